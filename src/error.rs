@@ -1,0 +1,64 @@
+//! Errors a user can cause (bad configuration) and the one a run can end with (divergence).
+
+use serde::Serialize;
+
+/// A configuration the simulation cannot run, with the parameter named and what would work.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ConfigError {
+    #[error("segments = {segments}: the {method} method needs at least {min} segments")]
+    TooFewSegments {
+        method: &'static str,
+        segments: usize,
+        min: usize,
+    },
+    #[error(
+        "dt = {0}: the time step must be a positive, finite number of time units (for example 1e-4)"
+    )]
+    TimeStep(f64),
+    #[error(
+        "dt = {dt}: exceeds the estimated stability limit {limit:.3e} of the {method} method at {segments} segments; use dt ≤ {limit:.3e}, or --allow-unstable to watch it fail"
+    )]
+    UnstableTimeStep {
+        method: &'static str,
+        segments: usize,
+        dt: f64,
+        limit: f64,
+    },
+    #[error("duration = {0}: must be a finite number of time units ≥ 0")]
+    Duration(f64),
+    #[error("log-rate = {0}: must be a finite number of frames per time unit > 0")]
+    LogRate(f64),
+    #[error(
+        "log-rate = {log_rate}: more frames per time unit than time steps ({steps_per_unit:.0}); lower --log-rate or --dt"
+    )]
+    LogRateAboveSteps { log_rate: f64, steps_per_unit: f64 },
+    #[error("realtime = {0}: the speed must be a finite number > 0 (1 = one time unit per second)")]
+    Realtime(f64),
+    #[error(
+        "angle = {0}°: must lie within [0°, 90°] below the horizontal; held above the horizontal (a negative angle) the straight string would start in compression, which a string cannot carry"
+    )]
+    Angle(f64),
+    #[error(
+        "angle = 0°: the seed scheme cannot start from the horizontal: its support tension F_0 = sin φ0 is zero there and the support condition (11) divides by it; start from a small angle (e.g. 1°) or use the chain method, which starts from the horizontal"
+    )]
+    SeedFromHorizontal,
+    #[error("mode-number = {0}: must be 1, 2, 3 or 4")]
+    ModeNumber(u32),
+    #[error(
+        "amplitude = {0}: must be finite with |A| ≤ 0.2 (A is the tip's sideways displacement in string lengths; the mode shapes are small-oscillation solutions)"
+    )]
+    Amplitude(f64),
+}
+
+/// Why and when a run stopped producing trustworthy numbers. No value computed after it is
+/// ever handed out as a result.
+#[derive(Clone, Debug, PartialEq, Serialize, thiserror::Error)]
+#[error("diverged at step {step} (t = {time:.6}): {reason}")]
+pub struct Diverged {
+    /// The step (counted from 1) that produced the bad state.
+    pub step: u64,
+    /// The simulated time that step would have reached.
+    pub time: f64,
+    /// What went wrong, with the stability hint where the time step is to blame.
+    pub reason: String,
+}

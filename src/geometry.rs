@@ -1,0 +1,154 @@
+//! From angles to positions and energy: the report's eqs. (13)–(16), with the recursive form
+//! of (17)–(18) done as one running sum (its printed typos corrected, see physics.md).
+//!
+//! Segment i is a uniform rod of mass m = h and length h from node i to node i + 1; node 0 is
+//! the support at the origin. y points down, so the potential energy is −m g y.
+
+use nalgebra::{Point2, Vector2};
+
+/// A point in the plane of the swing (x away from the support, y down).
+pub type Point = Point2<f64>;
+
+/// Unit tangent of a segment at angle φ below the horizontal.
+#[inline]
+pub fn tangent(angle: f64) -> Vector2<f64> {
+    let (s, c) = angle.sin_cos();
+    Vector2::new(c, s)
+}
+
+/// Node positions, support … tip: N + 1 points (eqs. 14–15 at the segment ends).
+pub fn nodes(angles: &[f64], out: &mut Vec<Point>) {
+    let h = 1.0 / angles.len() as f64;
+    out.clear();
+    let mut p = Point::origin();
+    out.push(p);
+    for &phi in angles {
+        p += h * tangent(phi);
+        out.push(p);
+    }
+}
+
+/// Segment centres (eqs. 14–15): x_i = Σ_{m<i} h cos φ_m + (h/2) cos φ_i, y likewise.
+pub fn centres(angles: &[f64], out: &mut Vec<Point>) {
+    let h = 1.0 / angles.len() as f64;
+    out.clear();
+    let mut p = Point::origin();
+    for &phi in angles {
+        let t = tangent(phi);
+        out.push(p + 0.5 * h * t);
+        p += h * t;
+    }
+}
+
+/// The tip (free end) position.
+pub fn tip(angles: &[f64]) -> Point {
+    let h = 1.0 / angles.len() as f64;
+    angles
+        .iter()
+        .fold(Point::origin(), |p, &phi| p + h * tangent(phi))
+}
+
+/// Energy of the chain of rods (eq. 13 summed, eq. 16), in units of m g L.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct Energy {
+    /// Σ (m/2) v_i², the centres' motion.
+    pub translational: f64,
+    /// Σ (m h²/24) φ̇_i², each rod's spin about its centre.
+    pub rotational: f64,
+    /// Σ −m g y_i.
+    pub potential: f64,
+}
+
+impl Energy {
+    /// Translational plus rotational kinetic energy.
+    pub fn kinetic(&self) -> f64 {
+        self.translational + self.rotational
+    }
+
+    /// Kinetic plus potential energy: constant for the ideal string.
+    pub fn total(&self) -> f64 {
+        self.kinetic() + self.potential
+    }
+}
+
+/// Energy of segments whose angle and angular velocity are given by `segment(i)`, in one
+/// O(N) pass. The centre velocity is v_i = Σ_{m<i} h φ̇_m n_m + (h/2) φ̇_i n_i with the normal
+/// n = (−sin φ, cos φ).
+pub fn energy_of(n: usize, segment: impl Fn(usize) -> (f64, f64)) -> Energy {
+    let h = 1.0 / n as f64;
+    let m = h;
+    let (mut p, mut v) = (Vector2::zeros(), Vector2::zeros());
+    let mut e = Energy::default();
+    for i in 0..n {
+        let (phi, omega) = segment(i);
+        let (s, c) = phi.sin_cos();
+        let t = Vector2::new(c, s);
+        let normal = Vector2::new(-s, c);
+        let centre = p + 0.5 * h * t; // eqs. (14)–(15)
+        let v_centre = v + 0.5 * h * omega * normal;
+        e.translational += 0.5 * m * v_centre.norm_squared(); // eq. (13), first term
+        e.rotational += m * h * h / 24.0 * omega * omega; // eq. (13), second term
+        e.potential -= m * centre.y; // eq. (13), third term (y down)
+        p += h * t;
+        v += h * omega * normal;
+    }
+    e
+}
+
+/// Energy from angles and angular velocities at the same instant.
+pub fn energy(angles: &[f64], angular_velocity: &[f64]) -> Energy {
+    energy_of(angles.len(), |i| (angles[i], angular_velocity[i]))
+}
+
+/// Tip velocity Σ h φ̇_i n_i.
+pub fn tip_velocity(angles: &[f64], angular_velocity: &[f64]) -> Vector2<f64> {
+    let h = 1.0 / angles.len() as f64;
+    angles
+        .iter()
+        .zip(angular_velocity)
+        .fold(Vector2::zeros(), |v, (&phi, &w)| {
+            let (s, c) = phi.sin_cos();
+            v + h * w * Vector2::new(-s, c)
+        })
+}
+
+/// Tip acceleration Σ h (φ̈_i n_i − φ̇_i² t_i).
+pub fn tip_acceleration(
+    angles: &[f64],
+    angular_velocity: &[f64],
+    angular_acceleration: &[f64],
+) -> Vector2<f64> {
+    let h = 1.0 / angles.len() as f64;
+    let mut a = Vector2::zeros();
+    for ((&phi, &w), &alpha) in angles
+        .iter()
+        .zip(angular_velocity)
+        .zip(angular_acceleration)
+    {
+        let (s, c) = phi.sin_cos();
+        a += h * (alpha * Vector2::new(-s, c) - w * w * Vector2::new(c, s));
+    }
+    a
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hanging_string_at_rest_has_potential_minus_one_half() {
+        let angles = vec![std::f64::consts::FRAC_PI_2; 10];
+        let e = energy(&angles, &[0.0; 10]);
+        assert!((e.potential + 0.5).abs() < 1e-12);
+        assert_eq!(e.kinetic(), 0.0);
+        assert!((tip(&angles) - Point::new(0.0, 1.0)).norm() < 1e-12);
+    }
+
+    #[test]
+    fn rigid_rotation_has_the_kinetic_energy_of_a_rod_about_its_end() {
+        // A straight string spinning at ω about the support: K = (1/2)(m L²/3) ω².
+        let n = 50;
+        let e = energy(&vec![0.3; n], &vec![2.0; n]);
+        assert!((e.kinetic() - 0.5 / 3.0 * 4.0).abs() < 1e-12);
+    }
+}

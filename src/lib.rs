@@ -1,0 +1,38 @@
+//! # rope
+//!
+//! An inextensible string (a rope or chain fixed at one end, free at the other) swinging under
+//! gravity, after Miha Čančula's 2012 report (`shared/physics.md` restates it in English).
+//!
+//! The crate is split in two halves that know nothing of each other:
+//!
+//! * the **numeric core**, pure and free of I/O: [`scene`] builds initial states, [`method`]
+//!   advances them (the report's finite-difference scheme [`seed::Seed`] and a chain of rigid
+//!   rods [`chain::Chain`]), [`geometry`] turns angles into positions and energy, and
+//!   [`simulate`] drives a method to a final time, producing [`simulate::Frame`]s and watching
+//!   for divergence;
+//! * the **edges**: [`logger`] writes frames to a Rerun recording stream, [`app`] wires the
+//!   simulation and the logger threads together for the `rope` command line.
+//!
+//! Units are dimensionless: length L = 1, gravity g = 1, mass per length 1, time in sqrt(L/g).
+//! Coordinates: x horizontal away from the support, **y pointing down**; φ is the angle of the
+//! tangent below the horizontal.
+
+pub mod analysis;
+pub mod app;
+pub mod bessel;
+pub mod chain;
+pub mod cli;
+pub mod color;
+pub mod error;
+pub mod geometry;
+pub mod logger;
+pub mod method;
+pub mod scene;
+pub mod seed;
+pub mod simulate;
+pub mod summary;
+pub mod tridiagonal;
+
+pub use error::{ConfigError, Diverged};
+pub use method::{Method, MethodKind};
+pub use scene::Scene;

@@ -1,0 +1,75 @@
+//! Scenes: the initial states a run starts from, each a small function of the segment count.
+
+use crate::bessel;
+use crate::error::ConfigError;
+use std::f64::consts::FRAC_PI_2;
+
+/// An initial state of the string: angles of its segments, at rest.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Scene {
+    /// Straight and at rest at `angle_deg` degrees below the horizontal (the report's case).
+    Release { angle_deg: f64 },
+    /// Hanging straight down at rest, displaced by a small amplitude in the shape of the
+    /// `number`-th small-oscillation mode (D. Bernoulli). `amplitude` is the tip's sideways
+    /// displacement in string lengths.
+    Mode { number: u32, amplitude: f64 },
+}
+
+impl Scene {
+    /// Short name used on the command line and in summaries.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Release { .. } => "release",
+            Self::Mode { .. } => "mode",
+        }
+    }
+
+    /// Checks the scene's own parameters (the method checks what it can start from).
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        match *self {
+            Self::Release { angle_deg } => {
+                if !(0.0..=90.0).contains(&angle_deg) {
+                    return Err(ConfigError::Angle(angle_deg));
+                }
+            }
+            Self::Mode { number, amplitude } => {
+                if !(1..=4).contains(&number) {
+                    return Err(ConfigError::ModeNumber(number));
+                }
+                if !amplitude.is_finite() || amplitude.abs() > 0.2 {
+                    return Err(ConfigError::Amplitude(amplitude));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The initial angle of the string at the support, in radians below the horizontal.
+    pub fn support_angle(&self) -> f64 {
+        match *self {
+            Self::Release { angle_deg } => angle_deg.to_radians(),
+            Self::Mode { .. } => FRAC_PI_2,
+        }
+    }
+
+    /// Angles φ_i of `segments` equal segments, sampled at the segment centres s = (i + ½)h.
+    pub fn initial_angles(&self, segments: usize) -> Vec<f64> {
+        let h = 1.0 / segments as f64;
+        match *self {
+            Self::Release { angle_deg } => vec![angle_deg.to_radians(); segments],
+            Self::Mode { number, amplitude } => {
+                let omega = bessel::mode_frequency(number);
+                (0..segments)
+                    .map(|i| {
+                        let s = (i as f64 + 0.5) * h;
+                        let r = (1.0 - s).sqrt();
+                        // Sideways displacement x(s) = A J0(2ω sqrt(1 − s)) (zero at the
+                        // support since J0(2ω) = 0); x = ∫ cos φ ≈ −∫ δφ, so δφ = −dx/ds.
+                        let dx_ds = amplitude * omega * bessel::j1(2.0 * omega * r) / r;
+                        FRAC_PI_2 - dx_ds
+                    })
+                    .collect()
+            }
+        }
+    }
+}

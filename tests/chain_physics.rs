@@ -1,0 +1,126 @@
+//! The chain of rigid rods against physics: free fall of the tip from the horizontal and at
+//! an angle, Bernoulli's frequencies, energy conservation, and second-order convergence.
+
+mod common;
+
+use common::*;
+use rope::chain::Chain;
+use rope::method::MethodKind;
+use rope::scene::Scene;
+
+const THIRTY: Scene = Scene::Release { angle_deg: 30.0 };
+const HORIZONTAL: Scene = Scene::Release { angle_deg: 0.0 };
+
+#[test]
+fn horizontal_release_tip_falls_with_exactly_g_until_t_1_2() {
+    let (outcome, frames) = run_frames(
+        MethodKind::Chain,
+        HORIZONTAL,
+        100,
+        Chain::default_dt(100),
+        1.2,
+        100.0,
+    );
+    assert!(outcome.diverged.is_none());
+    for f in &frames {
+        let fall = f.tip().y - f.time * f.time / 2.0;
+        assert!(fall.abs() < 1e-3, "t = {}: y_tip − t²/2 = {fall}", f.time);
+    }
+    // …while it is pulled inward: the tip's x shrinks.
+    assert!(frames.last().unwrap().tip().x < 0.9);
+}
+
+#[test]
+fn thirty_degree_release_tip_follows_the_general_free_fall_law() {
+    let (_, frames) = run_frames(
+        MethodKind::Chain,
+        THIRTY,
+        100,
+        Chain::default_dt(100),
+        1.2,
+        100.0,
+    );
+    let worst = frames
+        .iter()
+        .map(|f| free_fall_residual(30.0, f).abs())
+        .fold(0.0, f64::max);
+    assert!(worst < 1e-3, "largest residual {worst}");
+}
+
+#[test]
+fn mode_frequencies_match_bernoulli_within_0_2_percent() {
+    for (n, expected) in [(1, 1.2024), (2, 2.7601)] {
+        let exact = rope::bessel::mode_frequency(n);
+        assert!((exact - expected).abs() < 1e-4);
+        let w = mode_angular_frequency(MethodKind::Chain, n, 100, Chain::default_dt(100));
+        assert!(
+            (w / exact - 1.0).abs() < 0.002,
+            "mode {n}: ω = {w}, Bernoulli {exact}"
+        );
+    }
+}
+
+#[test]
+fn energy_drift_over_one_time_unit_is_below_1e_6_at_the_default_step() {
+    for scene in [THIRTY, HORIZONTAL] {
+        let outcome = run_to(MethodKind::Chain, scene, 100, Chain::default_dt(100), 1.0);
+        assert!(outcome.diverged.is_none());
+        let rel = outcome.max_rel_deviation();
+        assert!(rel < 1e-6, "{scene:?}: relative drift {rel}");
+    }
+}
+
+#[test]
+fn energy_never_grows_and_drifts_below_1e_6_over_ten_time_units() {
+    let (outcome, frames) = run_frames(
+        MethodKind::Chain,
+        THIRTY,
+        100,
+        Chain::default_dt(100),
+        10.0,
+        20.0,
+    );
+    assert!(outcome.diverged.is_none());
+    // RK4 is not symplectic: it loses a little energy at each fast pass of the tip (O(k⁴)),
+    // but it never gains any, so nothing can build up into a blow-up.
+    let highest = frames
+        .iter()
+        .map(|f| f.energy_deviation)
+        .fold(f64::MIN, f64::max);
+    assert!(highest < 1e-9, "energy rose by {highest:.3e} (relative)");
+    assert!(
+        outcome.max_rel_deviation() < 1e-6,
+        "drift {:.3e}",
+        outcome.max_rel_deviation()
+    );
+}
+
+#[test]
+fn tip_position_at_t1_converges_at_second_order() {
+    let tip = |n: usize| run_to(MethodKind::Chain, THIRTY, n, Chain::default_dt(n), 1.0).tip;
+    let fine = [tip(200), tip(400)];
+    // Richardson: second-order extrapolation from N = 200 and 400.
+    let converged = fine[1] + (fine[1] - fine[0]) / 3.0;
+    let segments = [25, 50, 100, 200];
+    let errors: Vec<f64> = segments
+        .iter()
+        .map(|&n| (tip(n) - converged).norm())
+        .collect();
+    let order = fitted_order(&segments, &errors);
+    assert!(order >= 1.7, "order {order}, errors {errors:?}");
+    assert!(
+        errors[2] < 1e-4,
+        "N = 100 is {} from the converged tip",
+        errors[2]
+    );
+    // The seed scheme at the same N is about two orders of magnitude further off.
+    let seed = run_to(
+        MethodKind::Seed,
+        THIRTY,
+        100,
+        rope::seed::Seed::default_dt(100),
+        1.0,
+    )
+    .tip;
+    assert!((seed - converged).norm() > 30.0 * errors[2]);
+}

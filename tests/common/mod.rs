@@ -1,0 +1,90 @@
+//! Helpers shared by the physics tests: run a method and sample it.
+#![allow(dead_code)]
+
+use rope::method::{Method, MethodKind};
+use rope::scene::Scene;
+use rope::simulate::{self, Frame, Options, Outcome};
+use std::ops::ControlFlow;
+
+/// Runs `kind` on `scene` to `duration`, keeping every frame logged at `log_rate`.
+pub fn run_frames(
+    kind: MethodKind,
+    scene: Scene,
+    segments: usize,
+    dt: f64,
+    duration: f64,
+    log_rate: f64,
+) -> (Outcome, Vec<Frame>) {
+    let mut method = kind
+        .build(&scene, segments, dt)
+        .expect("valid configuration");
+    let mut frames = Vec::new();
+    let outcome = simulate::run(
+        method.as_mut(),
+        &Options { duration, log_rate },
+        None,
+        |f| {
+            frames.push(f);
+            ControlFlow::Continue(())
+        },
+    );
+    (outcome, frames)
+}
+
+/// Runs to `duration` without frames and returns the outcome.
+pub fn run_to(kind: MethodKind, scene: Scene, segments: usize, dt: f64, duration: f64) -> Outcome {
+    let mut method: Box<dyn Method> = kind
+        .build(&scene, segments, dt)
+        .expect("valid configuration");
+    simulate::run(
+        method.as_mut(),
+        &Options {
+            duration,
+            log_rate: 0.0,
+        },
+        None,
+        |_| ControlFlow::Continue(()),
+    )
+}
+
+/// Least-squares slope of log(error) against log(h): the measured order of convergence.
+pub fn fitted_order(segments: &[usize], errors: &[f64]) -> f64 {
+    let xs: Vec<f64> = segments.iter().map(|&n| (1.0 / n as f64).ln()).collect();
+    let ys: Vec<f64> = errors.iter().map(|e| e.ln()).collect();
+    let n = xs.len() as f64;
+    let (mx, my) = (xs.iter().sum::<f64>() / n, ys.iter().sum::<f64>() / n);
+    let sxy: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
+    let sxx: f64 = xs.iter().map(|x| (x - mx) * (x - mx)).sum();
+    sxy / sxx
+}
+
+/// The free-fall residual of physics.md: the tip's displacement across the initial line,
+/// −sin φ0 · x + cos φ0 · y, minus cos φ0 · t²/2 (its initial value is 0).
+pub fn free_fall_residual(angle_deg: f64, frame: &Frame) -> f64 {
+    let phi0 = angle_deg.to_radians();
+    let tip = frame.tip();
+    let across = -phi0.sin() * tip.x + phi0.cos() * tip.y;
+    across - phi0.cos() * frame.time * frame.time / 2.0
+}
+
+/// Measured angular frequency of the `mode` scene from the tip's zero crossings.
+pub fn mode_angular_frequency(kind: MethodKind, number: u32, segments: usize, dt: f64) -> f64 {
+    let omega = rope::bessel::mode_frequency(number);
+    let periods = 3.0;
+    let (outcome, frames) = run_frames(
+        kind,
+        Scene::Mode {
+            number,
+            amplitude: 0.02,
+        },
+        segments,
+        dt,
+        periods * std::f64::consts::TAU / omega + 0.1,
+        400.0,
+    );
+    assert!(outcome.diverged.is_none(), "{:?}", outcome.diverged);
+    let period =
+        rope::analysis::period_from_zero_crossings(frames.iter().map(|f| (f.time, f.tip().x)))
+            .expect("at least one full period");
+    std::f64::consts::TAU / period
+}

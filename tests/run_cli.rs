@@ -1,0 +1,379 @@
+//! `rope run` as a user meets it: the real binary, headless, its recording read back with
+//! Rerun's own decoder.
+
+use rerun::external::re_log_encoding::rrd::DecoderApp;
+use rerun::external::re_log_types::LogMsg;
+use rerun::log::Chunk;
+use serde_json::Value;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+const ROPE: &str = env!("CARGO_BIN_EXE_rope");
+
+/// A scratch directory removed at the end of the test.
+struct Scratch(PathBuf);
+
+impl Scratch {
+    fn new(name: &str) -> Self {
+        let dir = std::env::temp_dir().join(format!("rope-test-{name}-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        Self(dir)
+    }
+    fn path(&self, file: &str) -> PathBuf {
+        self.0.join(file)
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+fn rope(args: &[&str]) -> Output {
+    Command::new(ROPE)
+        .args(args)
+        .output()
+        .expect("the rope binary runs")
+}
+
+/// What a recording holds, per entity path of the recording store: the chunks' rows.
+#[derive(Default)]
+struct Recording {
+    chunks: BTreeMap<String, Vec<Chunk>>,
+}
+
+impl Recording {
+    fn decode(bytes: &[u8]) -> Self {
+        let mut rec = Recording::default();
+        for msg in DecoderApp::decode_lazy(bytes) {
+            let msg = msg.expect("the recording decodes");
+            if let LogMsg::ArrowMsg(store, arrow) = msg {
+                if !store.is_recording() {
+                    continue; // the blueprint
+                }
+                let chunk = Chunk::from_arrow_msg(&arrow).expect("a valid chunk");
+                let path = chunk
+                    .entity_path()
+                    .to_string()
+                    .trim_start_matches('/')
+                    .to_owned();
+                rec.chunks.entry(path).or_default().push(chunk);
+            }
+        }
+        rec
+    }
+
+    fn read(path: &Path) -> Self {
+        Self::decode(&std::fs::read(path).expect("the recording exists"))
+    }
+
+    /// Rows logged on the timelines (not static) for `entity`.
+    fn temporal_rows(&self, entity: &str) -> usize {
+        self.chunks
+            .get(entity)
+            .map(|cs| {
+                cs.iter()
+                    .filter(|c| !c.is_static())
+                    .map(|c| c.num_rows())
+                    .sum()
+            })
+            .unwrap_or(0)
+    }
+
+    fn has(&self, entity: &str) -> bool {
+        self.chunks.contains_key(entity)
+    }
+}
+
+fn summary(path: &Path) -> Value {
+    serde_json::from_str(&std::fs::read_to_string(path).expect("summary written")).expect("JSON")
+}
+
+#[test]
+fn saved_recording_has_every_entity_one_strip_per_segment_and_one_frame_per_log_interval() {
+    let dir = Scratch::new("save");
+    let (rrd, json) = (dir.path("run.rrd"), dir.path("summary.json"));
+    let out = rope(&[
+        "run",
+        "--segments",
+        "50",
+        "--duration",
+        "1",
+        "--log-rate",
+        "30",
+        "--save",
+        rrd.to_str().unwrap(),
+        "--summary",
+        json.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let rec = Recording::read(&rrd);
+    for entity in [
+        "rope/segments",
+        "rope/support",
+        "rope/tip",
+        "rope/trail",
+        "tension/profile",
+        "energy/kinetic",
+        "energy/potential",
+        "energy/total",
+        "energy/deviation",
+        "support/tension",
+        "tip/speed",
+        "tip/acceleration",
+        "parameters",
+    ] {
+        assert!(
+            rec.has(entity),
+            "missing {entity}; have {:?}",
+            rec.chunks.keys()
+        );
+    }
+    let frames = 31; // duration × log-rate + 1
+    assert_eq!(rec.temporal_rows("rope/segments"), frames);
+    assert_eq!(rec.temporal_rows("energy/total"), frames);
+    let strips = rerun::LineStrips2D::descriptor_strips().component;
+    let colors = rerun::LineStrips2D::descriptor_colors().component;
+    for chunk in &rec.chunks["rope/segments"] {
+        for (s, c) in chunk
+            .iter_component::<rerun::components::LineStrip2D>(strips)
+            .zip(chunk.iter_component::<rerun::components::Color>(colors))
+        {
+            assert_eq!(s.len(), 50, "one strip per segment");
+            assert_eq!(c.len(), 50, "one colour per segment");
+        }
+    }
+    let s = summary(&json);
+    for field in [
+        "method",
+        "scene",
+        "segments",
+        "dt",
+        "angle_deg",
+        "duration",
+        "steps",
+        "status",
+        "diverged",
+        "wall_seconds",
+        "ns_per_segment_step",
+        "frames_logged",
+        "energy",
+        "tip",
+        "support_tension",
+        "tip_samples",
+        "period",
+    ] {
+        assert!(s.get(field).is_some(), "summary lacks {field}");
+    }
+    for field in [
+        "reference",
+        "final",
+        "max_abs_deviation",
+        "max_rel_deviation",
+    ] {
+        assert!(
+            s["energy"].get(field).is_some(),
+            "summary.energy lacks {field}"
+        );
+    }
+    assert_eq!(s["status"], "ok");
+    assert_eq!(s["frames_logged"], frames);
+    assert_eq!(s["tip_samples"].as_array().unwrap().len(), frames);
+    assert!(s["diverged"].is_null() && s["period"].is_null());
+}
+
+#[test]
+fn mode_scene_summary_measures_the_period() {
+    let dir = Scratch::new("mode");
+    let json = dir.path("summary.json");
+    let out = rope(&[
+        "run",
+        "--scene",
+        "mode",
+        "--method",
+        "chain",
+        "--duration",
+        "11",
+        "--save",
+        dir.path("m.rrd").to_str().unwrap(),
+        "--summary",
+        json.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let period = summary(&json)["period"].as_f64().expect("a period");
+    let bernoulli = std::f64::consts::TAU / rope::bessel::mode_frequency(1);
+    assert!(
+        (period / bernoulli - 1.0).abs() < 0.01,
+        "period {period}, Bernoulli {bernoulli}"
+    );
+}
+
+#[test]
+fn stdout_carries_a_decodable_recording() {
+    let out = rope(&[
+        "run",
+        "--segments",
+        "20",
+        "--duration",
+        "0.5",
+        "--log-rate",
+        "10",
+        "--stdout",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(
+        Recording::decode(&out.stdout).temporal_rows("rope/segments"),
+        6
+    );
+}
+
+#[test]
+fn diverging_run_exits_non_zero_says_when_and_keeps_its_frames() {
+    let dir = Scratch::new("diverge");
+    let (rrd, json) = (dir.path("d.rrd"), dir.path("d.json"));
+    let out = rope(&[
+        "run",
+        "--dt",
+        "8e-3",
+        "--allow-unstable",
+        "--duration",
+        "3",
+        "--log-rate",
+        "20",
+        "--save",
+        rrd.to_str().unwrap(),
+        "--summary",
+        json.to_str().unwrap(),
+    ]);
+    let code = out.status.code().expect("exited");
+    assert!(code != 0 && code != 2, "exit code {code}");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("diverged at step"), "{stderr}");
+    let s = summary(&json);
+    assert_eq!(s["status"], "diverged");
+    let frames = s["frames_logged"].as_u64().unwrap() as usize;
+    assert!(frames >= 5, "only {frames} frames before divergence");
+    assert_eq!(Recording::read(&rrd).temporal_rows("rope/segments"), frames);
+    assert!(s["diverged"]["time"].as_f64().unwrap() < 3.0);
+}
+
+fn interrupt_mid_run(signal: &str) {
+    let dir = Scratch::new(&format!("signal-{signal}"));
+    let (rrd, json) = (dir.path("i.rrd"), dir.path("i.json"));
+    let mut child = Command::new(ROPE)
+        .args([
+            "run",
+            "--realtime",
+            "--duration",
+            "60",
+            "--save",
+            rrd.to_str().unwrap(),
+            "--summary",
+            json.to_str().unwrap(),
+        ])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(Duration::from_millis(1500));
+    let sent = Instant::now();
+    let kill = Command::new("kill")
+        .args([signal, &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    let status = loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            break status;
+        }
+        assert!(
+            sent.elapsed() < Duration::from_secs(5),
+            "still running 5 s after {signal}"
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    assert!(
+        sent.elapsed() < Duration::from_secs(2),
+        "took {:?} to stop",
+        sent.elapsed()
+    );
+    assert_eq!(status.code(), Some(130));
+    let s = summary(&json);
+    assert_eq!(s["status"], "interrupted");
+    let frames = s["frames_logged"].as_u64().unwrap() as usize;
+    assert!(
+        frames >= 30,
+        "{frames} frames in 1.5 s of realtime at 60 per second"
+    );
+    assert_eq!(Recording::read(&rrd).temporal_rows("rope/segments"), frames);
+}
+
+#[test]
+fn sigint_mid_run_stops_within_a_second_and_leaves_a_complete_recording() {
+    interrupt_mid_run("-INT");
+}
+
+#[test]
+fn sigterm_mid_run_behaves_like_sigint() {
+    interrupt_mid_run("-TERM");
+}
+
+#[test]
+fn bad_inputs_exit_2_naming_the_parameter() {
+    for (args, named) in [
+        (&["--segments", "0"][..], "segments"),
+        (&["--dt", "-1"][..], "dt"),
+        (&["--dt", "0.05"][..], "dt"),
+        (&["--angle", "120"][..], "angle"),
+        (&["--angle", "0"][..], "angle"),
+        (&["--duration", "-2"][..], "duration"),
+        (&["--log-rate", "0"][..], "log-rate"),
+        (
+            &["--scene", "mode", "--mode-number", "9"][..],
+            "mode-number",
+        ),
+        (&["--scene", "mode", "--amplitude", "NaN"][..], "amplitude"),
+        (&["--segments", "-3"][..], "segments"),
+    ] {
+        let mut full = vec!["run", "--save", "/nonexistent/never-written.rrd"];
+        full.extend_from_slice(args);
+        let out = rope(&full);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(
+            stderr.contains(named),
+            "{args:?} should name {named}: {stderr}"
+        );
+    }
+}
+
+#[test]
+fn spawning_without_a_viewer_says_how_to_install_one() {
+    let empty = Scratch::new("nopath");
+    let out = Command::new(ROPE)
+        .args(["run", "--duration", "0.1"])
+        .env("PATH", &empty.0)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(
+        stderr.contains("pip install rerun-sdk==0.36.3") && stderr.contains("--save"),
+        "{stderr}"
+    );
+}
