@@ -106,7 +106,10 @@ impl RunConfig {
     }
 
     fn angle_deg(&self) -> f64 {
-        self.scene.support_angle().to_degrees()
+        match self.scene {
+            Scene::Release { angle_deg } => angle_deg,
+            Scene::Mode { .. } => 90.0,
+        }
     }
 }
 

@@ -4,6 +4,7 @@ use crate::app::RunConfig;
 use crate::error::ConfigError;
 use crate::method::MethodKind;
 use crate::scene::Scene;
+use crate::study::model::{self, Choice};
 use std::path::PathBuf;
 
 /// Simulate an inextensible string swinging under gravity and stream it to the Rerun viewer.
@@ -19,6 +20,90 @@ pub struct Cli {
 pub enum Command {
     /// Simulate one scene and stream it to a viewer, an .rrd file or stdout.
     Run(RunArgs),
+    /// Run a grid of simulations (methods × segments × time steps) and chart speed against
+    /// accuracy, stability, and the report's figures.
+    Study(StudyArgs),
+}
+
+/// The scene flags shared by `run` and `study`.
+#[derive(Debug, clap::Args)]
+pub struct SceneArgs {
+    /// Initial state.
+    #[arg(long, value_enum, default_value_t = SceneKind::Release)]
+    pub scene: SceneKind,
+
+    /// Initial angle below the horizontal, in degrees (release scene), 0 to 90.
+    #[arg(long, default_value_t = 30.0, allow_negative_numbers = true)]
+    pub angle: f64,
+
+    /// Which small-oscillation mode the `mode` scene starts in (1 to 4).
+    #[arg(long, default_value_t = 1)]
+    pub mode_number: u32,
+
+    /// Tip displacement of the `mode` scene, in string lengths (|A| ≤ 0.2).
+    #[arg(long, default_value_t = 0.05, allow_negative_numbers = true)]
+    pub amplitude: f64,
+}
+
+impl SceneArgs {
+    /// The scene the flags describe.
+    pub fn scene(&self) -> Scene {
+        match self.scene {
+            SceneKind::Release => Scene::Release {
+                angle_deg: self.angle,
+            },
+            SceneKind::Mode => Scene::Mode {
+                number: self.mode_number,
+                amplitude: self.amplitude,
+            },
+        }
+    }
+}
+
+/// `rope study` flags.
+#[derive(Debug, clap::Args)]
+pub struct StudyArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+
+    /// Simulated time of every run; errors are measured at its end.
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    pub duration: f64,
+
+    /// Methods to compare.
+    #[arg(long, value_enum, value_delimiter = ',', default_values_t = MethodKind::ALL)]
+    pub methods: Vec<MethodKind>,
+
+    /// Segment counts N.
+    #[arg(long, value_delimiter = ',', default_values_t = [10, 20, 50, 100, 200, 500, 1000])]
+    pub segments: Vec<usize>,
+
+    /// Time steps k [default: 1e-6 to 3e-2 in half-decades].
+    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+    pub dts: Option<Vec<f64>>,
+
+    /// Segments of the reference's finest run [default: twice the largest N].
+    #[arg(long)]
+    pub reference_segments: Option<usize>,
+
+    /// Directory for study.csv, findings.md and the charts (SVG and PNG).
+    #[arg(long, default_value = "study")]
+    pub out: PathBuf,
+
+    /// Also put the charts' data into this Rerun recording.
+    #[arg(long, value_name = "FILE.rrd")]
+    pub save: Option<PathBuf>,
+}
+
+impl StudyArgs {
+    /// The time steps to run.
+    pub fn dts(&self) -> Vec<f64> {
+        self.dts.clone().unwrap_or_else(|| {
+            (0..10)
+                .map(|i| if i % 2 == 0 { 1.0 } else { 3.0 } * 10f64.powi(-6 + i / 2))
+                .collect()
+        })
+    }
 }
 
 /// Which initial state to start from.
@@ -42,25 +127,18 @@ pub struct RunArgs {
     #[arg(long, allow_negative_numbers = true)]
     pub dt: Option<f64>,
 
-    /// Initial angle below the horizontal, in degrees (release scene), 0 to 90.
-    #[arg(long, default_value_t = 30.0, allow_negative_numbers = true)]
-    pub angle: f64,
+    #[command(flatten)]
+    pub scene: SceneArgs,
 
     /// Simulated time to run, in time units.
     #[arg(long, default_value_t = 3.0, allow_negative_numbers = true)]
     pub duration: f64,
 
-    /// Initial state.
-    #[arg(long, value_enum, default_value_t = SceneKind::Release)]
-    pub scene: SceneKind,
-
-    /// Which small-oscillation mode the `mode` scene starts in (1 to 4).
-    #[arg(long, default_value_t = 1)]
-    pub mode_number: u32,
-
-    /// Tip displacement of the `mode` scene, in string lengths (|A| ≤ 0.2).
-    #[arg(long, default_value_t = 0.05, allow_negative_numbers = true)]
-    pub amplitude: f64,
+    /// Choose method, segments and time step for a tip-position error of at most EPS (string
+    /// lengths) at the final time, from the error model fitted to `rope study`; prints the
+    /// choice, its predicted error and cost.
+    #[arg(long, value_name = "EPS", allow_negative_numbers = true, conflicts_with_all = ["method", "segments", "dt"])]
+    pub tolerance: Option<f64>,
 
     /// Numerical method.
     #[arg(long, value_enum, default_value_t = MethodKind::Seed)]
@@ -88,30 +166,46 @@ pub struct RunArgs {
 }
 
 impl RunArgs {
-    /// The scene the flags describe.
-    pub fn scene(&self) -> Scene {
-        match self.scene {
-            SceneKind::Release => Scene::Release {
-                angle_deg: self.angle,
-            },
-            SceneKind::Mode => Scene::Mode {
-                number: self.mode_number,
-                amplitude: self.amplitude,
-            },
-        }
-    }
-
-    /// Validates the flags into a run.
-    pub fn config(&self) -> Result<RunConfig, ConfigError> {
-        RunConfig::new(
-            self.method,
-            self.scene(),
-            self.segments,
-            self.dt,
+    /// Validates the flags into a run; with `--tolerance`, also says what the rule chose.
+    pub fn config(&self) -> Result<(RunConfig, Option<Choice>), ConfigError> {
+        let scene = self.scene.scene();
+        let (method, segments, dt, choice) = match self.tolerance {
+            None => (self.method, self.segments, self.dt, None),
+            Some(eps) => {
+                scene.validate()?;
+                if !(eps.is_finite() && eps > 0.0) {
+                    return Err(ConfigError::Tolerance(eps));
+                }
+                let choice = model::choose(eps, self.duration.max(0.0), &scene)
+                    .ok_or(ConfigError::Tolerance(eps))?;
+                if choice.predicted_seconds > MAX_TOLERANCE_SECONDS {
+                    return Err(ConfigError::ToleranceTooCostly {
+                        tolerance: eps,
+                        segments: choice.segments,
+                        seconds: choice.predicted_seconds,
+                    });
+                }
+                (
+                    choice.method,
+                    choice.segments,
+                    Some(choice.dt),
+                    Some(choice),
+                )
+            }
+        };
+        let config = RunConfig::new(
+            method,
+            scene,
+            segments,
+            dt,
             self.duration,
             self.log_rate,
             self.realtime,
             self.allow_unstable,
-        )
+        )?;
+        Ok((config, choice))
     }
 }
+
+/// The longest run `--tolerance` will choose (predicted CPU seconds).
+const MAX_TOLERANCE_SECONDS: f64 = 3600.0;

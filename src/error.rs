@@ -32,6 +32,18 @@ pub enum ConfigError {
         "log-rate = {log_rate}: more frames per time unit than time steps ({steps_per_unit:.0}); lower --log-rate or --dt"
     )]
     LogRateAboveSteps { log_rate: f64, steps_per_unit: f64 },
+    #[error(
+        "tolerance = {0}: must be a finite tip error > 0, in string lengths (for example 1e-4)"
+    )]
+    Tolerance(f64),
+    #[error(
+        "tolerance = {tolerance}: would need N = {segments} and about {seconds:.0} CPU seconds; ask for a looser tolerance"
+    )]
+    ToleranceTooCostly {
+        tolerance: f64,
+        segments: usize,
+        seconds: f64,
+    },
     #[error("realtime = {0}: the speed must be a finite number > 0 (1 = one time unit per second)")]
     Realtime(f64),
     #[error(

@@ -11,7 +11,8 @@
 //!   [`simulate`] drives a method to a final time, producing [`simulate::Frame`]s and watching
 //!   for divergence;
 //! * the **edges**: [`logger`] writes frames to a Rerun recording stream, [`app`] wires the
-//!   simulation and the logger threads together for the `rope` command line.
+//!   simulation and the logger threads together for `rope run`, and [`study`] runs grids of
+//!   simulations and charts speed against accuracy for `rope study`.
 //!
 //! Units are dimensionless: length L = 1, gravity g = 1, mass per length 1, time in sqrt(L/g).
 //! Coordinates: x horizontal away from the support, **y pointing down**; φ is the angle of the
@@ -30,6 +31,7 @@ pub mod method;
 pub mod scene;
 pub mod seed;
 pub mod simulate;
+pub mod study;
 pub mod summary;
 pub mod tridiagonal;
 

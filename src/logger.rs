@@ -19,6 +19,7 @@ pub mod path {
     pub const TRAIL: &str = "rope/trail";
     pub const SCALE: &str = "rope/tension_scale";
     pub const PROFILE: &str = "tension/profile";
+    pub const PROFILE_AXES: &str = "tension/axes";
     pub const KINETIC: &str = "energy/kinetic";
     pub const POTENTIAL: &str = "energy/potential";
     pub const TOTAL: &str = "energy/total";
@@ -34,7 +35,7 @@ pub const SIM_TIME: &str = "sim_time";
 pub const STEP: &str = "step";
 
 /// How many frames of the tip's path the trail keeps.
-const TRAIL_FRAMES: usize = 90;
+const TRAIL_FRAMES: usize = 45;
 /// Line radius of the rope, in string lengths.
 const ROPE_RADIUS: f32 = 0.006;
 /// Largest tension on the colour scale (the support tension of a swing from rest ≲ 5/4).
@@ -61,20 +62,26 @@ pub fn blueprint() -> Blueprint {
             .with_origin(path::TIP_ACCELERATION)
             .into(),
     ]);
-    Blueprint::new(Horizontal::new([
-        Vertical::new([rope.into(), profile.into(), params.into()])
-            .with_row_shares([3.0, 2.0, 1.0])
+    Blueprint::new(
+        Horizontal::new([
+            Vertical::new([
+                rope.into(),
+                Tabs::new([profile.into(), params.into()]).into(),
+            ])
+            .with_row_shares([3.0, 2.0])
             .into(),
-        Vertical::new([energy.into(), deviation.into(), diagnostics.into()]).into(),
-    ]))
+            Vertical::new([energy.into(), deviation.into(), diagnostics.into()]).into(),
+        ])
+        .with_column_shares([3.0, 2.0]),
+    )
     .with_auto_views(false)
+    .with_time_panel(rerun::blueprint::TimePanel::new().with_timeline(SIM_TIME))
 }
 
 /// Streams frames of one run into a recording.
 pub struct RopeLogger {
     rec: RecordingStream,
     trail: VecDeque<[f32; 2]>,
-    abscissa: Vec<f64>,
 }
 
 impl RopeLogger {
@@ -96,10 +103,11 @@ impl RopeLogger {
                 .with_labels(["support"]),
         )?;
         Self::log_scale(&rec)?;
+        Self::log_profile_axes(&rec)?;
         let series = [
             (path::KINETIC, "kinetic", [230, 120, 30]),
             (path::POTENTIAL, "potential", [60, 120, 220]),
-            (path::TOTAL, "total", [30, 30, 30]),
+            (path::TOTAL, "total", [220, 220, 220]),
             (path::DEVIATION, "(E − E_ref)/|E_ref|", [200, 40, 40]),
             (path::SUPPORT_TENSION, "F_0", [200, 150, 0]),
             (path::TIP_SPEED, "|v_tip|", [40, 150, 80]),
@@ -116,14 +124,14 @@ impl RopeLogger {
         Ok(Self {
             rec,
             trail: VecDeque::with_capacity(TRAIL_FRAMES),
-            abscissa: Vec::new(),
         })
     }
 
-    /// A static colour bar above the swing, F from 0 to [`SCALE_MAX`], labelled at its ends.
+    /// A static colour bar below the swing, F from 0 to [`SCALE_MAX`], labelled at its ends.
+    /// Spanning the swing's width, it also keeps the view's extent steady.
     fn log_scale(rec: &RecordingStream) -> rerun::RecordingStreamResult<()> {
         let pieces = 25;
-        let (x0, width, y) = (-1.0f32, 2.0f32, -0.12f32);
+        let (x0, width, y) = (-1.0f32, 2.0f32, 1.12f32);
         let strips = (0..pieces).map(|i| {
             let a = x0 + width * i as f32 / pieces as f32;
             let b = x0 + width * (i + 1) as f32 / pieces as f32;
@@ -135,14 +143,32 @@ impl RopeLogger {
             rerun::Color::from_rgb(r, g, b)
         });
         let mut labels = vec![String::new(); pieces];
-        labels[0] = "F = 0".into();
-        labels[pieces / 2] = format!("tension (m g), F = {:.2}", SCALE_MAX / 2.0);
-        labels[pieces - 1] = format!("F ≥ {SCALE_MAX}");
+        labels[0] = "tension F = 0".into();
+        labels[pieces - 1] = format!("F ≥ {SCALE_MAX} m g");
         rec.log_static(
             path::SCALE,
             &rerun::LineStrips2D::new(strips)
                 .with_colors(colors)
                 .with_radii([0.02])
+                .with_labels(labels),
+        )
+    }
+
+    /// Static axes for the tension profile: s from the support (0) to the tip (1) along the
+    /// bottom, F drawn upward with guide lines at F = 0.5, 1 and 1.5.
+    fn log_profile_axes(rec: &RecordingStream) -> rerun::RecordingStreamResult<()> {
+        let grey = rerun::Color::from_unmultiplied_rgba(160, 160, 160, 140);
+        let mut strips = vec![[[0.0f32, 0.0], [1.0, 0.0]], [[0.0, 0.0], [0.0, -1.6]]];
+        let mut labels = vec!["s (support 0 … tip 1)".to_owned(), String::new()];
+        for f in [0.5f32, 1.0, 1.5] {
+            strips.push([[0.0, -f], [1.0, -f]]);
+            labels.push(format!("F = {f}"));
+        }
+        rec.log_static(
+            path::PROFILE_AXES,
+            &rerun::LineStrips2D::new(strips)
+                .with_radii([0.002])
+                .with_colors([grey])
                 .with_labels(labels),
         )
     }
@@ -181,15 +207,19 @@ impl RopeLogger {
                 .with_radii([0.002])
                 .with_colors([rerun::Color::from_unmultiplied_rgba(40, 40, 40, 110)]),
         )?;
-        let n = frame.tension.len();
-        if self.abscissa.len() != n {
-            self.abscissa = (0..n).map(|i| (i as f64 + 0.5) / n as f64).collect();
-        }
+        // F(s) drawn upward: x = s, y = −F (the 2D view's y points down).
+        let n = frame.tension.len() as f32;
+        let profile: Vec<[f32; 2]> = frame
+            .tension
+            .iter()
+            .enumerate()
+            .map(|(i, &f)| [(i as f32 + 0.5) / n, -(f as f32)])
+            .collect();
         rec.log(
             path::PROFILE,
-            &rerun::BarChart::new(frame.tension.as_slice())
-                .with_abscissa(self.abscissa.as_slice())
-                .with_color(rerun::Color::from_rgb(230, 150, 0)),
+            &rerun::LineStrips2D::new([profile])
+                .with_radii([0.008])
+                .with_colors([rerun::Color::from_rgb(230, 150, 0)]),
         )?;
         let scalars = [
             (path::KINETIC, frame.energy.kinetic()),

@@ -3,7 +3,7 @@
 
 use anyhow::Context as _;
 use clap::Parser as _;
-use rope::cli::{Cli, Command, RunArgs};
+use rope::cli::{Cli, Command, RunArgs, StudyArgs};
 use rope::summary::Status;
 use std::process::ExitCode;
 use std::sync::Arc;
@@ -16,26 +16,37 @@ const EXIT_INTERRUPTED: u8 = 130;
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    match cli.command {
-        Command::Run(args) => match run(&args) {
-            Ok(code) => code,
-            Err(err) => {
-                eprintln!("rope: error: {err:#}");
-                ExitCode::FAILURE
-            }
-        },
+    let result = match &cli.command {
+        Command::Run(args) => run(args),
+        Command::Study(args) => study(args),
+    };
+    match result {
+        Ok(code) => code,
+        Err(err) => {
+            eprintln!("rope: error: {err:#}");
+            ExitCode::FAILURE
+        }
     }
 }
 
 fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
-    let config = match args.config() {
+    let (config, choice) = match args.config() {
         Ok(config) => config,
         Err(err) => {
             eprintln!("rope: bad input: {err}");
             return Ok(ExitCode::from(EXIT_BAD_INPUT));
         }
     };
-    if args.dt.is_none() {
+    if let (Some(choice), Some(eps)) = (choice, args.tolerance) {
+        eprintln!(
+            "rope: tolerance {eps:e}: chose the {} method, N = {}, k = {:e}; predicted tip error {:.1e}, predicted cost {:.2e} CPU s (error model fitted by `rope study` on the 30° release)",
+            choice.method,
+            choice.segments,
+            choice.dt,
+            choice.predicted_error,
+            choice.predicted_seconds
+        );
+    } else if args.dt.is_none() {
         eprintln!(
             "rope: --dt not given: using k = {:.3e} for the {} method at N = {} (estimated stability limit {:.3e})",
             config.dt,
@@ -88,4 +99,90 @@ fn explain_viewer_error(err: anyhow::Error) -> anyhow::Error {
     } else {
         err.context("opening the Rerun recording")
     }
+}
+
+fn study(args: &StudyArgs) -> anyhow::Result<ExitCode> {
+    use rope::study;
+    let scene = args.scene.scene();
+    let dts = args.dts();
+    let bad = |what: String| -> anyhow::Result<ExitCode> {
+        eprintln!("rope: bad input: {what}");
+        Ok(ExitCode::from(EXIT_BAD_INPUT))
+    };
+    if let Err(err) = scene.validate() {
+        return bad(err.to_string());
+    }
+    if !(args.duration.is_finite() && args.duration > 0.0) {
+        return bad(format!(
+            "duration = {}: must be a finite number of time units > 0",
+            args.duration
+        ));
+    }
+    if let Some(dt) = dts.iter().find(|dt| !(dt.is_finite() && **dt > 0.0)) {
+        return bad(format!("dts: {dt} is not a positive, finite time step"));
+    }
+    if let Some(n) = args.segments.iter().find(|n| **n < 2) {
+        return bad(format!(
+            "segments: {n} is too few (at least 2; the seed method needs 4)"
+        ));
+    }
+    let finest = args.segments.iter().copied().max().unwrap_or(100);
+    let reference_segments = args.reference_segments.unwrap_or(2 * finest);
+    if reference_segments < 4 || !reference_segments.is_multiple_of(2) {
+        return bad(format!(
+            "reference-segments = {reference_segments}: must be an even number ≥ 4"
+        ));
+    }
+    let spec = study::Spec {
+        scene,
+        duration: args.duration,
+        methods: args.methods.clone(),
+        segments: args.segments.clone(),
+        dts,
+    };
+    let cells = spec.cells().len() as u64;
+    eprintln!(
+        "rope study: {cells} runs ({} methods × {} N × {} k) on {} threads, reference at N = {reference_segments}",
+        spec.methods.len(),
+        spec.segments.len(),
+        spec.dts.len(),
+        rayon::current_num_threads()
+    );
+    let bar = indicatif::ProgressBar::new(cells).with_style(
+        indicatif::ProgressStyle::with_template(
+            "{bar:40} {pos}/{len} runs, {elapsed} elapsed, ~{eta} left",
+        )
+        .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    // Off a terminal (CI logs, pipes) the bar is hidden: print a line every tenth instead.
+    let plain = !std::io::IsTerminal::is_terminal(&std::io::stderr());
+    let started = std::time::Instant::now();
+    let progress = || {
+        bar.inc(1);
+        let done = bar.position();
+        if plain && (done * 10 / cells.max(1) != (done - 1) * 10 / cells.max(1) || done == cells) {
+            eprintln!(
+                "rope study: {done}/{cells} runs done, {:.0} s",
+                started.elapsed().as_secs_f64()
+            );
+        }
+    };
+    let command = std::env::args().collect::<Vec<_>>().join(" ");
+    let outcome = study::execute(&spec, reference_segments, &args.out, &command, progress)?;
+    bar.finish_and_clear();
+    let markdown = outcome.findings.markdown(&outcome.reference, &command);
+    if let Some(path) = &args.save {
+        let rec = rerun::RecordingStreamBuilder::new("rope-study")
+            .save(path)
+            .with_context(|| format!("opening {}", path.display()))?;
+        study::record::log(&rec, &outcome, &markdown).context("logging the study")?;
+        rec.flush_blocking()
+            .context("writing the study recording")?;
+    }
+    println!("{markdown}");
+    eprintln!(
+        "rope study: wrote study.csv, findings.md and the charts to {}",
+        args.out.display()
+    );
+    Ok(ExitCode::SUCCESS)
 }

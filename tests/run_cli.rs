@@ -377,3 +377,37 @@ fn spawning_without_a_viewer_says_how_to_install_one() {
         "{stderr}"
     );
 }
+
+#[test]
+fn tolerance_flag_prints_its_choice_and_runs_it() {
+    let dir = Scratch::new("tolerance");
+    let json = dir.path("t.json");
+    let out = rope(&[
+        "run",
+        "--tolerance",
+        "1e-4",
+        "--duration",
+        "1",
+        "--save",
+        dir.path("t.rrd").to_str().unwrap(),
+        "--summary",
+        json.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("tolerance 1e-4: chose the chain method"),
+        "{stderr}"
+    );
+    assert_eq!(summary(&json)["method"], "chain");
+    let clash = rope(&[
+        "run",
+        "--tolerance",
+        "1e-4",
+        "--segments",
+        "50",
+        "--save",
+        "/nonexistent/x.rrd",
+    ]);
+    assert_eq!(clash.status.code(), Some(2));
+}

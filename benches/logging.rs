@@ -1,0 +1,48 @@
+//! What streaming costs: the report's run (N = 100, k = 1e-5, 30°, 1 time unit) with 60
+//! frames per time unit saved to an .rrd file, against the same run with logging off.
+//!
+//! `cargo bench --bench logging`; the README's overhead figure comes from it.
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use rope::app::{self, RunConfig};
+use rope::method::MethodKind;
+use rope::scene::Scene;
+use std::sync::atomic::AtomicBool;
+
+fn config() -> RunConfig {
+    RunConfig::new(
+        MethodKind::Seed,
+        Scene::Release { angle_deg: 30.0 },
+        100,
+        Some(1e-5),
+        1.0,
+        60.0,
+        None,
+        false,
+    )
+    .expect("the report's setting is valid")
+}
+
+fn logging_overhead(c: &mut Criterion) {
+    let config = config();
+    let stop = AtomicBool::new(false);
+    let path = std::env::temp_dir().join(format!("rope-bench-{}.rrd", std::process::id()));
+    let mut group = c.benchmark_group("report_run_1_time_unit");
+    group.sample_size(20);
+    group.bench_function("logging_off", |b| {
+        b.iter(|| app::run(&config, None, &stop).expect("runs"))
+    });
+    group.bench_function("saved_to_rrd", |b| {
+        b.iter(|| {
+            let rec = rerun::RecordingStreamBuilder::new("rope-bench")
+                .save(&path)
+                .expect("a writable temp file");
+            app::run(&config, Some(rec), &stop).expect("runs")
+        })
+    });
+    group.finish();
+    let _ = std::fs::remove_file(&path);
+}
+
+criterion_group!(benches, logging_overhead);
+criterion_main!(benches);

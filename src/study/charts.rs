@@ -1,0 +1,486 @@
+//! The study's charts, each drawn twice, as SVG and as PNG: work–precision, the stability
+//! map, and the report's Figs. 1–4.
+
+use super::{Row, Status};
+use crate::method::MethodKind;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::ops::Range;
+use std::path::Path;
+
+/// The font every chart uses, shipped so that PNGs render the same on any machine.
+static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
+const SANS: &str = "sans-serif";
+const SIZE: (u32, u32) = (1100, 620);
+
+type Drawn<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
+
+/// A named, coloured line of (x, y) points.
+type Series = (String, RGBColor, Vec<(f64, f64)>);
+
+/// What a work–precision panel plots against cost: a label and how to read it off a row.
+type Metric = (&'static str, fn(&Row) -> Option<f64>);
+
+/// Registers the shipped font; call once before drawing PNGs.
+pub fn register_font() -> anyhow::Result<()> {
+    plotters::style::register_font(SANS, FontStyle::Normal, FONT)
+        .map_err(|_| anyhow::anyhow!("the shipped font assets/fonts/DejaVuSans.ttf is invalid"))
+}
+
+/// Draws `chart` to `<dir>/<name>.svg` and `<dir>/<name>.png`.
+macro_rules! render {
+    ($dir:expr, $name:expr, $chart:ident, $($arg:expr),*) => {{
+        let svg = $dir.join(format!("{}.svg", $name));
+        let png = $dir.join(format!("{}.png", $name));
+        {
+            let root = SVGBackend::new(&svg, SIZE).into_drawing_area();
+            $chart(&root, $($arg),*).map_err(|e| anyhow::anyhow!("drawing {}: {e:?}", svg.display()))?;
+            root.present().map_err(|e| anyhow::anyhow!("writing {}: {e:?}", svg.display()))?;
+        }
+        {
+            let root = BitMapBackend::new(&png, SIZE).into_drawing_area();
+            $chart(&root, $($arg),*).map_err(|e| anyhow::anyhow!("drawing {}: {e:?}", png.display()))?;
+            root.present().map_err(|e| anyhow::anyhow!("writing {}: {e:?}", png.display()))?;
+        }
+        anyhow::Ok(())
+    }};
+}
+
+/// Colour of a method's curve for the i-th of `count` segment counts (darker = finer).
+fn shade(method: MethodKind, i: usize, count: usize) -> RGBColor {
+    let t = if count > 1 {
+        i as f64 / (count - 1) as f64
+    } else {
+        1.0
+    };
+    let mix = |a: u8, b: u8| (a as f64 + (b as f64 - a as f64) * t).round() as u8;
+    match method {
+        MethodKind::Seed => RGBColor(mix(250, 150), mix(170, 30), mix(60, 0)),
+        MethodKind::Chain => RGBColor(mix(110, 10), mix(170, 40), mix(240, 140)),
+    }
+}
+
+/// A log range covering `values` (positive ones), padded by a factor of 2 each way.
+fn log_range(values: impl Iterator<Item = f64>) -> Range<f64> {
+    let (lo, hi) = values
+        .filter(|v| *v > 0.0 && v.is_finite())
+        .fold((f64::MAX, f64::MIN), |(lo, hi), v| (lo.min(v), hi.max(v)));
+    if lo > hi {
+        return 1e-6..1.0;
+    }
+    lo / 2.0..hi * 2.0
+}
+
+fn segment_counts(rows: &[Row], method: MethodKind) -> Vec<usize> {
+    let mut n: Vec<usize> = rows
+        .iter()
+        .filter(|r| r.method == method)
+        .map(|r| r.segments)
+        .collect();
+    n.sort_unstable();
+    n.dedup();
+    n
+}
+
+/// The runs that no other run beats on both cost and error: the Pareto front.
+pub fn pareto_front(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
+    let mut sorted: Vec<(f64, f64)> = points.to_vec();
+    sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut front: Vec<(f64, f64)> = Vec::new();
+    for p in sorted {
+        if front.last().is_none_or(|last| p.1 < last.1) {
+            front.push(p);
+        }
+    }
+    front
+}
+
+/// Work–precision: tip error and energy deviation against CPU seconds.
+fn work_precision<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    rows: &[Row],
+    title: &str,
+) -> Drawn<DB> {
+    root.fill(&WHITE)?;
+    let root = root.titled(title, (SANS, 22))?;
+    let panels = root.split_evenly((1, 2));
+    let ok: Vec<&Row> = rows.iter().filter(|r| r.status == Status::Ok).collect();
+    let x_range = log_range(ok.iter().map(|r| r.cpu_seconds));
+    let metrics: [Metric; 2] = [
+        ("tip error at the final time (string lengths)", |r| {
+            r.tip_error
+        }),
+        ("energy deviation max|E − E₁₀|/|E|", |r| {
+            r.energy_deviation
+        }),
+    ];
+    for (panel, (label, metric)) in panels.iter().zip(metrics) {
+        let y_range = log_range(ok.iter().filter_map(|r| metric(r)));
+        let mut chart = ChartBuilder::on(panel)
+            .margin(12)
+            .x_label_area_size(45)
+            .y_label_area_size(70)
+            .build_cartesian_2d(x_range.clone().log_scale(), y_range.log_scale())?;
+        chart
+            .configure_mesh()
+            .x_desc("CPU seconds (one run, one core)")
+            .y_desc(label)
+            .x_label_formatter(&|v| format!("{v:.0e}"))
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .label_style((SANS, 13))
+            .draw()?;
+        for method in MethodKind::ALL {
+            let counts = segment_counts(rows, method);
+            for (i, &n) in counts.iter().enumerate() {
+                let mut pts: Vec<(f64, f64)> = ok
+                    .iter()
+                    .filter(|r| r.method == method && r.segments == n)
+                    .filter_map(|r| metric(r).filter(|e| *e > 0.0).map(|e| (r.cpu_seconds, e)))
+                    .collect();
+                if pts.is_empty() {
+                    continue;
+                }
+                pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+                let color = shade(method, i, counts.len());
+                chart
+                    .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))?
+                    .label(format!("{method} N = {n}"))
+                    .legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(3))
+                    });
+                chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))?;
+            }
+        }
+        let all: Vec<(f64, f64)> = ok
+            .iter()
+            .filter_map(|r| metric(r).filter(|e| *e > 0.0).map(|e| (r.cpu_seconds, e)))
+            .collect();
+        let front = pareto_front(&all);
+        chart
+            .draw_series(LineSeries::new(front.clone(), BLACK.stroke_width(1)))?
+            .label("Pareto front")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLACK.stroke_width(1)));
+        chart.draw_series(
+            front
+                .iter()
+                .map(|&p| Circle::new(p, 6, BLACK.stroke_width(1))),
+        )?;
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .label_font((SANS, 11))
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK.mix(0.3))
+            .draw()?;
+    }
+    Ok(())
+}
+
+/// Stability map: N × k, each run marked ok / diverged / refused, the measured boundary and
+/// the estimate k = C h / sqrt(F_max).
+fn stability<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    rows: &[Row],
+    title: &str,
+) -> Drawn<DB> {
+    root.fill(&WHITE)?;
+    let root = root.titled(title, (SANS, 22))?;
+    let methods: Vec<MethodKind> = MethodKind::ALL
+        .into_iter()
+        .filter(|m| rows.iter().any(|r| r.method == *m))
+        .collect();
+    let panels = root.split_evenly((1, methods.len().max(1)));
+    let x_range = log_range(rows.iter().map(|r| r.segments as f64));
+    let y_range = log_range(rows.iter().map(|r| r.dt));
+    for (panel, &method) in panels.iter().zip(&methods) {
+        let mut chart = ChartBuilder::on(panel)
+            .caption(format!("{method}"), (SANS, 18))
+            .margin(12)
+            .x_label_area_size(45)
+            .y_label_area_size(70)
+            .build_cartesian_2d(x_range.clone().log_scale(), y_range.clone().log_scale())?;
+        chart
+            .configure_mesh()
+            .x_desc("segments N")
+            .y_desc("time step k")
+            .x_labels(6)
+            .x_label_formatter(&|v| format!("{v:.0}"))
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .label_style((SANS, 13))
+            .draw()?;
+        let mine: Vec<&Row> = rows.iter().filter(|r| r.method == method).collect();
+        let green = RGBColor(30, 150, 60);
+        let red = RGBColor(210, 40, 40);
+        chart
+            .draw_series(
+                mine.iter()
+                    .filter(|r| r.status == Status::Ok)
+                    .map(|r| Circle::new((r.segments as f64, r.dt), 5, green.filled())),
+            )?
+            .label("ok")
+            .legend(move |(x, y)| Circle::new((x + 8, y), 5, green.filled()));
+        chart
+            .draw_series(
+                mine.iter()
+                    .filter(|r| matches!(r.status, Status::Diverged { .. }))
+                    .map(|r| Cross::new((r.segments as f64, r.dt), 6, red.stroke_width(2))),
+            )?
+            .label("diverged")
+            .legend(move |(x, y)| Cross::new((x + 8, y), 6, red.stroke_width(2)));
+        chart
+            .draw_series(
+                mine.iter()
+                    .filter(|r| matches!(r.status, Status::Refused { .. }))
+                    .map(|r| {
+                        TriangleMarker::new((r.segments as f64, r.dt), 6, BLACK.mix(0.4).filled())
+                    }),
+            )?
+            .label("refused (cannot start)")
+            .legend(|(x, y)| TriangleMarker::new((x + 8, y), 6, BLACK.mix(0.4).filled()));
+        let boundary = measured_boundary(rows, method);
+        if boundary.len() >= 2 {
+            chart
+                .draw_series(LineSeries::new(boundary, BLACK.stroke_width(2)))?
+                .label("measured boundary")
+                .legend(|(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 18, y)], BLACK.stroke_width(2))
+                });
+        }
+        let estimate: Vec<(f64, f64)> = segment_counts(rows, method)
+            .iter()
+            .map(|&n| (n as f64, method.stability_limit(n)))
+            .collect();
+        let label = match method {
+            MethodKind::Seed => "estimate k = C h / sqrt(F_max)",
+            MethodKind::Chain => "substeps start: k = C h / sqrt(F_max)",
+        };
+        chart
+            .draw_series(DashedLineSeries::new(estimate, 8, 5, BLUE.stroke_width(2)))?
+            .label(label)
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLUE.stroke_width(2)));
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::LowerLeft)
+            .label_font((SANS, 12))
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK.mix(0.3))
+            .draw()?;
+    }
+    Ok(())
+}
+
+/// Per N, the geometric mean of the largest stable k and the smallest diverged k above it.
+pub fn measured_boundary(rows: &[Row], method: MethodKind) -> Vec<(f64, f64)> {
+    segment_counts(rows, method)
+        .into_iter()
+        .filter_map(|n| {
+            let mine = rows
+                .iter()
+                .filter(|r| r.method == method && r.segments == n);
+            let first_bad = mine
+                .clone()
+                .filter(|r| matches!(r.status, Status::Diverged { .. }))
+                .map(|r| r.dt)
+                .fold(f64::MAX, f64::min);
+            let last_good = mine
+                .filter(|r| r.status == Status::Ok && r.dt < first_bad)
+                .map(|r| r.dt)
+                .fold(0.0, f64::max);
+            (first_bad < f64::MAX && last_good > 0.0)
+                .then(|| (n as f64, (first_bad * last_good).sqrt()))
+        })
+        .collect()
+}
+
+/// A simple x–y line chart with one or more named series.
+fn lines<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    title: &str,
+    x_desc: &str,
+    y_desc: &str,
+    log: (bool, bool),
+    series: &[Series],
+) -> Drawn<DB> {
+    root.fill(&WHITE)?;
+    let xs = series.iter().flat_map(|s| s.2.iter().map(|p| p.0));
+    let ys = series.iter().flat_map(|s| s.2.iter().map(|p| p.1));
+    let linear = |v: Vec<f64>| {
+        let (lo, hi) = v
+            .iter()
+            .fold((f64::MAX, f64::MIN), |(a, b), &x| (a.min(x), b.max(x)));
+        let pad = (hi - lo).abs().max(1e-12) * 0.05;
+        (lo - pad)..(hi + pad)
+    };
+    let (xv, yv): (Vec<f64>, Vec<f64>) = (xs.collect(), ys.collect());
+    macro_rules! draw {
+        ($x:expr, $y:expr) => {{
+            let mut chart = ChartBuilder::on(root)
+                .caption(title, (SANS, 20))
+                .margin(14)
+                .x_label_area_size(45)
+                .y_label_area_size(80)
+                .build_cartesian_2d($x, $y)?;
+            chart
+                .configure_mesh()
+                .x_desc(x_desc)
+                .y_desc(y_desc)
+                .label_style((SANS, 13))
+                .draw()?;
+            for (name, color, pts) in series {
+                let color = *color;
+                chart
+                    .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))?
+                    .label(name.as_str())
+                    .legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(3))
+                    });
+                if pts.len() < 40 {
+                    chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))?;
+                }
+            }
+            chart
+                .configure_series_labels()
+                .label_font((SANS, 12))
+                .background_style(WHITE.mix(0.85))
+                .border_style(BLACK.mix(0.3))
+                .draw()?;
+        }};
+    }
+    match log {
+        (true, true) => draw!(
+            log_range(xv.into_iter()).log_scale(),
+            log_range(yv.into_iter()).log_scale()
+        ),
+        (false, true) => draw!(linear(xv), log_range(yv.into_iter()).log_scale()),
+        (true, false) => draw!(log_range(xv.into_iter()).log_scale(), linear(yv)),
+        (false, false) => draw!(linear(xv), linear(yv)),
+    }
+    Ok(())
+}
+
+/// Energy deviation of `method`'s ok runs against N at time step `dt` (Figs. 2–3).
+fn deviation_against_n(rows: &[Row], method: MethodKind, dt: f64) -> Vec<(f64, f64)> {
+    let mut pts: Vec<(f64, f64)> = rows
+        .iter()
+        .filter(|r| r.method == method && r.status == Status::Ok && (r.dt / dt - 1.0).abs() < 1e-9)
+        .filter_map(|r| r.energy_deviation.map(|e| (r.segments as f64, e)))
+        .collect();
+    pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    pts
+}
+
+/// Energy deviation of `method`'s ok runs against k at `segments` (Fig. 4).
+fn deviation_against_k(rows: &[Row], method: MethodKind, segments: usize) -> Vec<(f64, f64)> {
+    let mut pts: Vec<(f64, f64)> = rows
+        .iter()
+        .filter(|r| r.method == method && r.segments == segments && r.status == Status::Ok)
+        .filter_map(|r| r.energy_deviation.map(|e| (r.dt, e)))
+        .collect();
+    pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    pts
+}
+
+/// The time step nearest to 1e-5 in the grid (the report's), for Figs. 2–3.
+fn reports_dt(rows: &[Row]) -> f64 {
+    rows.iter()
+        .map(|r| r.dt)
+        .min_by(|a, b| {
+            (a.ln() - 1e-5f64.ln())
+                .abs()
+                .total_cmp(&(b.ln() - 1e-5f64.ln()).abs())
+        })
+        .unwrap_or(1e-5)
+}
+
+/// Writes every chart into `dir`. `startup` holds the start-up kinetic energy series
+/// (Fig. 1) per method; `scene_title` names the scene in the titles.
+pub fn write_all(
+    dir: &Path,
+    rows: &[Row],
+    startup: &[(MethodKind, Vec<(f64, f64)>)],
+    scene_title: &str,
+) -> anyhow::Result<()> {
+    render!(
+        dir,
+        "work_precision",
+        work_precision,
+        rows,
+        &format!("Work–precision, {scene_title}")
+    )?;
+    render!(
+        dir,
+        "stability_map",
+        stability,
+        rows,
+        &format!("Stability map, {scene_title}")
+    )?;
+    let color = |m: MethodKind| shade(m, 1, 1);
+    let fig1: Vec<_> = startup
+        .iter()
+        .map(|(m, pts)| (format!("{m}"), color(*m), pts.clone()))
+        .collect();
+    render!(
+        dir,
+        "fig1_startup_burst",
+        lines,
+        "Fig. 1: kinetic energy at start-up (N = 100, k = 1e-5, first 300 steps)",
+        "time",
+        "kinetic energy (m g L)",
+        (false, true),
+        &fig1
+    )?;
+    let dt = reports_dt(rows);
+    let by_n: Vec<_> = MethodKind::ALL
+        .iter()
+        .map(|&m| {
+            (
+                format!("{m}, k = {dt:e}"),
+                color(m),
+                deviation_against_n(rows, m, dt),
+            )
+        })
+        .filter(|s| !s.2.is_empty())
+        .collect();
+    render!(
+        dir,
+        "fig2_energy_vs_n_linear",
+        lines,
+        "Fig. 2: energy deviation against N",
+        "segments N",
+        "max|E − E₁₀|/|E|",
+        (false, false),
+        &by_n
+    )?;
+    render!(
+        dir,
+        "fig3_energy_vs_n_log",
+        lines,
+        "Fig. 3: energy deviation against N (log–log)",
+        "segments N",
+        "max|E − E₁₀|/|E|",
+        (true, true),
+        &by_n
+    )?;
+    let by_k: Vec<_> = MethodKind::ALL
+        .iter()
+        .map(|&m| {
+            (
+                format!("{m}, N = 100"),
+                color(m),
+                deviation_against_k(rows, m, 100),
+            )
+        })
+        .filter(|s| !s.2.is_empty())
+        .collect();
+    render!(
+        dir,
+        "fig4_energy_vs_k",
+        lines,
+        "Fig. 4: energy deviation against k (N = 100; missing points diverged)",
+        "time step k",
+        "max|E − E₁₀|/|E|",
+        (true, true),
+        &by_k
+    )?;
+    Ok(())
+}

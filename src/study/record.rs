@@ -1,0 +1,63 @@
+//! Puts a study's chart data into a Rerun recording: the work–precision points, the
+//! stability map and the findings, so that a `.rrd` carries the study.
+
+use super::{Outcome, Status};
+use crate::method::MethodKind;
+
+/// Logs the study's points (static: a study has no time axis) under `study/…`.
+pub fn log(
+    rec: &rerun::RecordingStream,
+    outcome: &Outcome,
+    findings_markdown: &str,
+) -> rerun::RecordingStreamResult<()> {
+    rec.log_static(
+        "study/findings",
+        &rerun::TextDocument::from_markdown(findings_markdown),
+    )?;
+    for method in MethodKind::ALL {
+        let mine: Vec<_> = outcome.rows.iter().filter(|r| r.method == method).collect();
+        if mine.is_empty() {
+            continue;
+        }
+        let ok: Vec<_> = mine.iter().filter(|r| r.status == Status::Ok).collect();
+        let points: Vec<[f32; 2]> = ok
+            .iter()
+            .filter_map(|r| {
+                let e = r.tip_error.filter(|e| *e > 0.0)?;
+                Some([r.cpu_seconds.max(1e-9).log10() as f32, -(e.log10() as f32)])
+            })
+            .collect();
+        let labels: Vec<String> = ok
+            .iter()
+            .filter(|r| r.tip_error.is_some_and(|e| e > 0.0))
+            .map(|r| format!("N = {}, k = {:e}", r.segments, r.dt))
+            .collect();
+        rec.log_static(
+            format!("study/work_precision/{method}"),
+            &rerun::Points2D::new(points)
+                .with_labels(labels)
+                .with_radii([0.04]),
+        )?;
+        let (points, colors): (Vec<[f32; 2]>, Vec<rerun::Color>) = mine
+            .iter()
+            .map(|r| {
+                let color = match r.status {
+                    Status::Ok => rerun::Color::from_rgb(30, 150, 60),
+                    Status::Diverged { .. } => rerun::Color::from_rgb(210, 40, 40),
+                    Status::Refused { .. } => rerun::Color::from_rgb(120, 120, 120),
+                };
+                (
+                    [(r.segments as f64).log10() as f32, -(r.dt.log10() as f32)],
+                    color,
+                )
+            })
+            .unzip();
+        rec.log_static(
+            format!("study/stability/{method}"),
+            &rerun::Points2D::new(points)
+                .with_colors(colors)
+                .with_radii([0.03]),
+        )?;
+    }
+    Ok(())
+}

@@ -1,0 +1,160 @@
+//! The study's mechanics on tiny grids (rows, statuses, the reference's error estimate,
+//! chart files), the committed error model against a fresh fit, and the tolerance rule
+//! against a fine reference. Timings are not tested here (they live in benchmarks).
+
+use rope::method::MethodKind;
+use rope::scene::Scene;
+use rope::study::{self, Spec, Status, model};
+
+const THIRTY: Scene = Scene::Release { angle_deg: 30.0 };
+
+fn scratch(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("rope-study-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+#[test]
+fn tiny_grid_writes_a_row_per_run_with_statuses_errors_and_every_chart() {
+    let spec = Spec {
+        scene: THIRTY,
+        duration: 0.5,
+        methods: MethodKind::ALL.to_vec(),
+        segments: vec![10, 50],
+        dts: vec![1e-3, 3e-2],
+    };
+    let out = scratch("tiny");
+    let outcome = study::execute(&spec, 100, &out, "test", || {}).expect("the study runs");
+    assert_eq!(outcome.rows.len(), 8);
+    // The seed scheme at N = 50 cannot take k = 3e-2 (its limit is about 1.7e-2 there).
+    let seed_50_big = outcome
+        .rows
+        .iter()
+        .find(|r| r.method == MethodKind::Seed && r.segments == 50 && r.dt > 1e-2)
+        .unwrap();
+    assert!(
+        matches!(seed_50_big.status, Status::Diverged { .. }),
+        "{:?}",
+        seed_50_big.status
+    );
+    for row in outcome.rows.iter().filter(|r| r.status == Status::Ok) {
+        assert!(row.tip_error.unwrap() > 0.0 && row.shape_error.unwrap() > 0.0);
+        assert!(row.energy_deviation.unwrap().is_finite());
+        assert!(row.cpu_seconds > 0.0);
+    }
+    let estimate = outcome.reference.error_estimate();
+    assert!(
+        estimate > 0.0 && estimate < 1e-4,
+        "reference error estimate {estimate}"
+    );
+    let csv = std::fs::read_to_string(out.join("study.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "method,segments,dt,status,energy_deviation,tip_error,shape_error,cpu_seconds,ns_per_segment_step"
+    );
+    assert_eq!(lines.count(), 8);
+    for chart in [
+        "work_precision",
+        "stability_map",
+        "fig1_startup_burst",
+        "fig2_energy_vs_n_linear",
+        "fig3_energy_vs_n_log",
+        "fig4_energy_vs_k",
+    ] {
+        for ext in ["svg", "png"] {
+            let path = out.join(format!("{chart}.{ext}"));
+            let size = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
+            assert!(size > 1000, "{} is missing or empty", path.display());
+        }
+    }
+    assert!(
+        std::fs::read_to_string(out.join("findings.md"))
+            .unwrap()
+            .contains("Convergence in h")
+    );
+    let _ = std::fs::remove_dir_all(out);
+}
+
+#[test]
+fn seed_runs_from_the_horizontal_are_refused_and_the_chain_runs() {
+    let spec = Spec {
+        scene: Scene::Release { angle_deg: 0.0 },
+        duration: 0.3,
+        methods: MethodKind::ALL.to_vec(),
+        segments: vec![10],
+        dts: vec![1e-3],
+    };
+    let rows = study::run_grid(&spec, || {});
+    let seed = rows.iter().find(|r| r.method == MethodKind::Seed).unwrap();
+    assert!(matches!(&seed.status, Status::Refused { reason } if reason.contains("horizontal")));
+    let chain = rows.iter().find(|r| r.method == MethodKind::Chain).unwrap();
+    assert_eq!(chain.status, Status::Ok);
+}
+
+#[test]
+fn committed_error_model_agrees_with_a_fresh_fit() {
+    let spec = Spec {
+        scene: THIRTY,
+        duration: 1.0,
+        methods: MethodKind::ALL.to_vec(),
+        segments: vec![25, 50, 100, 200],
+        dts: vec![2e-4],
+    };
+    let reference = study::reference(&THIRTY, 1.0, 800).unwrap();
+    let mut rows = study::run_grid(&spec, || {});
+    study::measure_errors(&mut rows, &reference);
+    for method in MethodKind::ALL {
+        let fresh = model::fit(&rows, method, 20).expect("enough points to fit");
+        let committed = model::committed(method);
+        assert!(
+            (fresh.order - committed.order).abs() < 0.15,
+            "{method}: {fresh:?} vs {committed:?}"
+        );
+        let ratio = fresh.predict(100) / committed.predict(100);
+        assert!(
+            (0.5..2.0).contains(&ratio),
+            "{method}: {fresh:?} vs {committed:?}"
+        );
+    }
+}
+
+#[test]
+fn tolerance_rule_meets_each_tolerance_and_the_looser_one_is_cheaper() {
+    let reference = study::reference(&THIRTY, 1.0, 800).unwrap();
+    let mut choices = Vec::new();
+    for tolerance in [1e-2, 1e-5] {
+        let choice = model::choose(tolerance, 1.0, &THIRTY).expect("a method can do it");
+        let row = study::run_cell(&THIRTY, 1.0, choice.method, choice.segments, choice.dt);
+        let achieved = (row.tip.unwrap() - reference.tip).norm();
+        assert!(
+            achieved <= tolerance,
+            "tolerance {tolerance}: {choice:?} achieved {achieved}"
+        );
+        choices.push(choice);
+    }
+    assert!(
+        choices[0].predicted_seconds < choices[1].predicted_seconds,
+        "{choices:?}"
+    );
+    let work = |c: &model::Choice| c.segments as f64 / c.dt;
+    assert!(work(&choices[0]) < work(&choices[1]), "{choices:?}");
+}
+
+#[test]
+fn a_loose_tolerance_picks_the_seed_scheme_and_a_tight_one_the_chain() {
+    assert_eq!(
+        model::choose(1e-1, 1.0, &THIRTY).unwrap().method,
+        MethodKind::Seed
+    );
+    assert_eq!(
+        model::choose(1e-4, 1.0, &THIRTY).unwrap().method,
+        MethodKind::Chain
+    );
+    // From the horizontal only the chain can start.
+    let horizontal = Scene::Release { angle_deg: 0.0 };
+    assert_eq!(
+        model::choose(1e-1, 1.0, &horizontal).unwrap().method,
+        MethodKind::Chain
+    );
+}
