@@ -10,6 +10,7 @@ use crate::scene::Scene;
 use crate::simulate::{self, Frame, Options};
 use crate::summary::{EnergySummary, Status, Summary, Xy};
 use anyhow::Context as _;
+use crossbeam_channel::RecvTimeoutError;
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
@@ -17,6 +18,12 @@ use std::time::{Duration, Instant};
 /// Frames in flight between the threads: enough to ride out a slow flush, small enough that
 /// an interrupted run drains at once.
 const CHANNEL_FRAMES: usize = 64;
+
+/// Frames logged together as columns when the run is not paced to the wall clock.
+const BATCH_FRAMES: usize = 16;
+
+/// How long a partly filled batch waits for more frames before it is sent.
+const BATCH_WAIT: Duration = Duration::from_millis(50);
 
 /// How long the end of a run waits for a viewer to take the last data.
 const FLUSH_TIMEOUT: Duration = Duration::from_secs(5);
@@ -141,11 +148,35 @@ pub fn run(
             let Some(mut logger) = logger else {
                 return Ok(());
             };
-            // Rerun's time context is per thread: every frame is logged from this one.
-            for frame in rx {
+            // Frames go out in batches of up to BATCH_FRAMES, or as soon as the simulation
+            // pauses for BATCH_WAIT (a slow run still shows live); paced runs send each frame.
+            // Each batch carries its own time columns, so no per-thread time context is used.
+            let batch_frames = if config.realtime.is_some() {
+                1
+            } else {
+                BATCH_FRAMES
+            };
+            let mut batch = Vec::with_capacity(batch_frames);
+            let mut open = true;
+            while open {
+                match rx.recv() {
+                    Ok(frame) => batch.push(frame),
+                    Err(_) => break, // the simulation has ended and every frame is logged
+                }
+                while batch.len() < batch_frames {
+                    match rx.recv_timeout(BATCH_WAIT) {
+                        Ok(frame) => batch.push(frame),
+                        Err(RecvTimeoutError::Timeout) => break,
+                        Err(RecvTimeoutError::Disconnected) => {
+                            open = false;
+                            break;
+                        }
+                    }
+                }
                 logger
-                    .log_frame(&frame)
-                    .context("writing a frame to the recording")?;
+                    .log_frames(&batch)
+                    .context("writing frames to the recording")?;
+                batch.clear();
             }
             logger
                 .recording()

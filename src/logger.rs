@@ -34,6 +34,9 @@ pub mod path {
 pub const SIM_TIME: &str = "sim_time";
 pub const STEP: &str = "step";
 
+/// A time series: its entity path and how to read its value off a frame.
+type Series = (&'static str, fn(&Frame) -> f64);
+
 /// How many frames of the tip's path the trail keeps.
 const TRAIL_FRAMES: usize = 45;
 /// Line radius of the rope, in string lengths.
@@ -44,8 +47,7 @@ const SCALE_MAX: f64 = 1.25;
 /// The viewer layout: rope and tension profile on the left, time series on the right.
 pub fn blueprint() -> Blueprint {
     let rope = Spatial2DView::new("Rope (coloured by tension)").with_origin("rope");
-    let profile =
-        rerun::blueprint::BarChartView::new("Tension profile F(s)").with_origin(path::PROFILE);
+    let profile = Spatial2DView::new("Tension profile F(s), drawn upward").with_origin("tension");
     let params = TextDocumentView::new("Parameters").with_origin(path::PARAMETERS);
     let energy =
         TimeSeriesView::new("Energy").with_contents([path::KINETIC, path::POTENTIAL, path::TOTAL]);
@@ -61,18 +63,15 @@ pub fn blueprint() -> Blueprint {
         TimeSeriesView::new("Tip acceleration")
             .with_origin(path::TIP_ACCELERATION)
             .into(),
+        params.into(),
     ]);
     Blueprint::new(
         Horizontal::new([
-            Vertical::new([
-                rope.into(),
-                Tabs::new([profile.into(), params.into()]).into(),
-            ])
-            .with_row_shares([3.0, 2.0])
-            .into(),
+            rope.into(),
+            profile.into(),
             Vertical::new([energy.into(), deviation.into(), diagnostics.into()]).into(),
         ])
-        .with_column_shares([3.0, 2.0]),
+        .with_column_shares([5.0, 2.0, 4.0]),
     )
     .with_auto_views(false)
     .with_time_panel(rerun::blueprint::TimePanel::new().with_timeline(SIM_TIME))
@@ -104,6 +103,29 @@ impl RopeLogger {
         )?;
         Self::log_scale(&rec)?;
         Self::log_profile_axes(&rec)?;
+        // Styling that never changes is logged once; frames carry only what moves.
+        rec.log_static(
+            path::SEGMENTS,
+            &rerun::LineStrips2D::update_fields().with_radii([ROPE_RADIUS]),
+        )?;
+        rec.log_static(
+            path::TIP,
+            &rerun::Points2D::update_fields()
+                .with_radii([0.015])
+                .with_colors([rerun::Color::from_rgb(20, 20, 20)]),
+        )?;
+        rec.log_static(
+            path::TRAIL,
+            &rerun::LineStrips2D::update_fields()
+                .with_radii([0.002])
+                .with_colors([rerun::Color::from_unmultiplied_rgba(40, 40, 40, 110)]),
+        )?;
+        rec.log_static(
+            path::PROFILE,
+            &rerun::LineStrips2D::update_fields()
+                .with_radii([0.008])
+                .with_colors([rerun::Color::from_rgb(230, 150, 0)]),
+        )?;
         let series = [
             (path::KINETIC, "kinetic", [230, 120, 30]),
             (path::POTENTIAL, "potential", [60, 120, 220]),
@@ -143,8 +165,7 @@ impl RopeLogger {
             rerun::Color::from_rgb(r, g, b)
         });
         let mut labels = vec![String::new(); pieces];
-        labels[0] = "tension F = 0".into();
-        labels[pieces - 1] = format!("F ≥ {SCALE_MAX} m g");
+        labels[pieces / 2] = format!("tension: red F = 0 … yellow F ≥ {SCALE_MAX} m g");
         rec.log_static(
             path::SCALE,
             &rerun::LineStrips2D::new(strips)
@@ -155,12 +176,12 @@ impl RopeLogger {
     }
 
     /// Static axes for the tension profile: s from the support (0) to the tip (1) along the
-    /// bottom, F drawn upward with guide lines at F = 0.5, 1 and 1.5.
+    /// bottom, F drawn upward with guide lines at F = 0.5, 1, 1.5 and 2.
     fn log_profile_axes(rec: &RecordingStream) -> rerun::RecordingStreamResult<()> {
         let grey = rerun::Color::from_unmultiplied_rgba(160, 160, 160, 140);
-        let mut strips = vec![[[0.0f32, 0.0], [1.0, 0.0]], [[0.0, 0.0], [0.0, -1.6]]];
+        let mut strips = vec![[[0.0f32, 0.0], [1.0, 0.0]], [[0.0, 0.0], [0.0, -2.0]]];
         let mut labels = vec!["s (support 0 … tip 1)".to_owned(), String::new()];
-        for f in [0.5f32, 1.0, 1.5] {
+        for f in [0.5f32, 1.0, 1.5, 2.0] {
             strips.push([[0.0, -f], [1.0, -f]]);
             labels.push(format!("F = {f}"));
         }
@@ -173,65 +194,106 @@ impl RopeLogger {
         )
     }
 
-    /// Logs one frame on the `sim_time` and `step` timelines.
-    pub fn log_frame(&mut self, frame: &Frame) -> rerun::RecordingStreamResult<()> {
-        let rec = &self.rec;
-        rec.set_time_sequence(STEP, frame.step as i64);
-        rec.set_duration_secs(SIM_TIME, frame.time);
-        let point = |p: &crate::geometry::Point| [p.x as f32, p.y as f32];
-        let strips = frame.nodes.windows(2).map(|w| [point(&w[0]), point(&w[1])]);
-        let colors = frame.tension.iter().map(|&f| {
-            let [r, g, b] = tension_rgb(f);
-            rerun::Color::from_rgb(r, g, b)
-        });
-        rec.log(
-            path::SEGMENTS,
-            &rerun::LineStrips2D::new(strips)
-                .with_colors(colors)
-                .with_radii([ROPE_RADIUS]),
-        )?;
-        let tip = point(&frame.tip());
-        rec.log(
-            path::TIP,
-            &rerun::Points2D::new([tip])
-                .with_radii([0.015])
-                .with_colors([rerun::Color::from_rgb(20, 20, 20)]),
-        )?;
-        if self.trail.len() == TRAIL_FRAMES {
-            self.trail.pop_front();
+    /// Logs a batch of frames, in order, on the `sim_time` and `step` timelines: one row per
+    /// frame and entity, sent as columns (one chunk per entity for the whole batch, far
+    /// cheaper than a log call per frame and entity).
+    pub fn log_frames(&mut self, frames: &[Frame]) -> rerun::RecordingStreamResult<()> {
+        if frames.is_empty() {
+            return Ok(());
         }
-        self.trail.push_back(tip);
-        rec.log(
-            path::TRAIL,
-            &rerun::LineStrips2D::new([self.trail.iter().copied().collect::<Vec<_>>()])
-                .with_radii([0.002])
-                .with_colors([rerun::Color::from_unmultiplied_rgba(40, 40, 40, 110)]),
+        let rec = &self.rec;
+        let times = || {
+            [
+                rerun::TimeColumn::new_duration_secs(SIM_TIME, frames.iter().map(|f| f.time)),
+                rerun::TimeColumn::new_sequence(STEP, frames.iter().map(|f| f.step as i64)),
+            ]
+        };
+        let point = |p: &crate::geometry::Point| [p.x as f32, p.y as f32];
+        let ones = || std::iter::repeat_n(1, frames.len());
+
+        // The rope: one 2-point strip per segment, coloured by its tension.
+        let mut strips = Vec::new();
+        let mut colors = Vec::new();
+        let mut lengths = Vec::with_capacity(frames.len());
+        for f in frames {
+            lengths.push(f.tension.len());
+            strips.extend(f.nodes.windows(2).map(|w| [point(&w[0]), point(&w[1])]));
+            colors.extend(f.tension.iter().map(|&t| {
+                let [r, g, b] = tension_rgb(t);
+                rerun::Color::from_rgb(r, g, b)
+            }));
+        }
+        rec.send_columns(
+            path::SEGMENTS,
+            times(),
+            rerun::LineStrips2D::update_fields()
+                .with_strips(strips)
+                .with_colors(colors)
+                .columns(lengths)?,
         )?;
-        // F(s) drawn upward: x = s, y = −F (the 2D view's y points down).
-        let n = frame.tension.len() as f32;
-        let profile: Vec<[f32; 2]> = frame
-            .tension
+
+        // The tip, and its trail as it stood at each frame.
+        let tips: Vec<[f32; 2]> = frames.iter().map(|f| point(&f.tip())).collect();
+        rec.send_columns(
+            path::TIP,
+            times(),
+            rerun::Points2D::update_fields()
+                .with_positions(tips.iter().copied())
+                .columns(ones())?,
+        )?;
+        let trails: Vec<Vec<[f32; 2]>> = tips
             .iter()
-            .enumerate()
-            .map(|(i, &f)| [(i as f32 + 0.5) / n, -(f as f32)])
+            .map(|&tip| {
+                if self.trail.len() == TRAIL_FRAMES {
+                    self.trail.pop_front();
+                }
+                self.trail.push_back(tip);
+                self.trail.iter().copied().collect()
+            })
             .collect();
-        rec.log(
-            path::PROFILE,
-            &rerun::LineStrips2D::new([profile])
-                .with_radii([0.008])
-                .with_colors([rerun::Color::from_rgb(230, 150, 0)]),
+        rec.send_columns(
+            path::TRAIL,
+            times(),
+            rerun::LineStrips2D::update_fields()
+                .with_strips(trails)
+                .columns(ones())?,
         )?;
-        let scalars = [
-            (path::KINETIC, frame.energy.kinetic()),
-            (path::POTENTIAL, frame.energy.potential),
-            (path::TOTAL, frame.energy.total()),
-            (path::DEVIATION, frame.energy_deviation),
-            (path::SUPPORT_TENSION, frame.support_tension),
-            (path::TIP_SPEED, frame.tip_velocity.norm()),
-            (path::TIP_ACCELERATION, frame.tip_acceleration.norm()),
+
+        // F(s) drawn upward: x = s, y = −F (the 2D view's y points down).
+        let profiles: Vec<Vec<[f32; 2]>> = frames
+            .iter()
+            .map(|f| {
+                let n = f.tension.len() as f32;
+                f.tension
+                    .iter()
+                    .enumerate()
+                    .map(|(i, &t)| [(i as f32 + 0.5) / n, -(t as f32)])
+                    .collect()
+            })
+            .collect();
+        rec.send_columns(
+            path::PROFILE,
+            times(),
+            rerun::LineStrips2D::update_fields()
+                .with_strips(profiles)
+                .columns(ones())?,
+        )?;
+
+        let series: [Series; 7] = [
+            (path::KINETIC, |f| f.energy.kinetic()),
+            (path::POTENTIAL, |f| f.energy.potential),
+            (path::TOTAL, |f| f.energy.total()),
+            (path::DEVIATION, |f| f.energy_deviation),
+            (path::SUPPORT_TENSION, |f| f.support_tension),
+            (path::TIP_SPEED, |f| f.tip_velocity.norm()),
+            (path::TIP_ACCELERATION, |f| f.tip_acceleration.norm()),
         ];
-        for (entity, value) in scalars {
-            rec.log(entity, &rerun::Scalars::single(value))?;
+        for (entity, value) in series {
+            rec.send_columns(
+                entity,
+                times(),
+                rerun::Scalars::new(frames.iter().map(value)).columns(ones())?,
+            )?;
         }
         Ok(())
     }

@@ -51,7 +51,7 @@ fn tiny_grid_writes_a_row_per_run_with_statuses_errors_and_every_chart() {
     let mut lines = csv.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "method,segments,dt,status,energy_deviation,tip_error,shape_error,cpu_seconds,ns_per_segment_step"
+        "method,segments,dt,status,energy_deviation,tip_error,shape_error,cpu_seconds,ns_per_segment_step,diverged_time,reason"
     );
     assert_eq!(lines.count(), 8);
     for chart in [

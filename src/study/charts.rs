@@ -60,6 +60,25 @@ fn shade(method: MethodKind, i: usize, count: usize) -> RGBColor {
     }
 }
 
+/// A tick label: plain for ordinary magnitudes, one-digit scientific otherwise (log axes
+/// land on values like 9.999999999999998e-5 that should read 1e-4).
+fn tick(v: &f64) -> String {
+    let a = v.abs();
+    if a == 0.0 {
+        "0".to_owned()
+    } else if (1e-2..1e4).contains(&a) {
+        let digits = (3 - a.log10().floor() as i32 - 1).max(0) as usize;
+        let text = format!("{v:.digits$}");
+        if text.contains('.') {
+            text.trim_end_matches('0').trim_end_matches('.').to_owned()
+        } else {
+            text
+        }
+    } else {
+        format!("{v:.0e}")
+    }
+}
+
 /// A log range covering `values` (positive ones), padded by a factor of 2 each way.
 fn log_range(values: impl Iterator<Item = f64>) -> Range<f64> {
     let (lo, hi) = values
@@ -324,6 +343,8 @@ fn lines<DB: DrawingBackend>(
                 .configure_mesh()
                 .x_desc(x_desc)
                 .y_desc(y_desc)
+                .x_label_formatter(&tick)
+                .y_label_formatter(&tick)
                 .label_style((SANS, 13))
                 .draw()?;
             for (name, color, pts) in series {

@@ -275,13 +275,20 @@ pub fn write_csv(rows: &[Row], path: &Path) -> std::io::Result<()> {
     let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
     writeln!(
         out,
-        "method,segments,dt,status,energy_deviation,tip_error,shape_error,cpu_seconds,ns_per_segment_step"
+        "method,segments,dt,status,energy_deviation,tip_error,shape_error,cpu_seconds,ns_per_segment_step,diverged_time,reason"
     )?;
     let opt = |v: Option<f64>| v.map(|x| format!("{x:.6e}")).unwrap_or_default();
     for r in rows {
+        let (time, reason) = match &r.status {
+            Status::Ok => (String::new(), String::new()),
+            Status::Diverged { time, reason } => (format!("{time:.6}"), reason.clone()),
+            Status::Refused { reason } => (String::new(), reason.clone()),
+        };
+        // CSV quoting: the reason is free text.
+        let reason = format!("\"{}\"", reason.replace('"', "\"\""));
         writeln!(
             out,
-            "{},{},{:e},{},{},{},{},{:.6e},{:.3}",
+            "{},{},{:e},{},{},{},{},{:.6e},{:.3},{time},{reason}",
             r.method,
             r.segments,
             r.dt,
