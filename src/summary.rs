@@ -65,11 +65,13 @@ impl Summary {
             (Status::Interrupted, _) => "interrupted".to_owned(),
             _ => "ok".to_owned(),
         };
+        let scene = match self.scene {
+            "release" => format!("release at {}°", self.angle_deg),
+            other => format!("{other} scene"),
+        };
         let mut text = format!(
-            "rope: {method}, {scene} at {angle}°, N = {n}, k = {dt:.3e}: {steps} steps to t = {t:.4} ({status})\n",
+            "rope: {method}, {scene}, N = {n}, k = {dt:.3e}: {steps} steps to t = {t:.4} ({status})\n",
             method = self.method,
-            scene = self.scene,
-            angle = self.angle_deg,
             n = self.segments,
             dt = self.dt,
             steps = self.steps,

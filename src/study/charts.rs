@@ -60,6 +60,20 @@ fn shade(method: MethodKind, i: usize, count: usize) -> RGBColor {
     }
 }
 
+/// Draws the legend box every chart uses, at `position` with labels of `size` points.
+fn legend<'a, 'b, DB: DrawingBackend + 'a, CT: plotters::coord::CoordTranslate>(
+    mut labels: plotters::chart::SeriesLabelStyle<'a, 'b, DB, CT>,
+    position: SeriesLabelPosition,
+    size: u32,
+) -> Drawn<DB> {
+    labels
+        .position(position)
+        .label_font((SANS, size))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK.mix(0.3))
+        .draw()
+}
+
 /// A tick label: plain for ordinary magnitudes, one-digit scientific otherwise (log axes
 /// land on values like 9.999999999999998e-5 that should read 1e-4).
 fn tick(v: &f64) -> String {
@@ -184,13 +198,11 @@ fn work_precision<DB: DrawingBackend>(
                 .iter()
                 .map(|&p| Circle::new(p, 6, BLACK.stroke_width(1))),
         )?;
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .label_font((SANS, 11))
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK.mix(0.3))
-            .draw()?;
+        legend(
+            chart.configure_series_labels(),
+            SeriesLabelPosition::UpperRight,
+            11,
+        )?;
     }
     Ok(())
 }
@@ -277,13 +289,11 @@ fn stability<DB: DrawingBackend>(
             .draw_series(DashedLineSeries::new(estimate, 8, 5, BLUE.stroke_width(2)))?
             .label(label)
             .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLUE.stroke_width(2)));
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerLeft)
-            .label_font((SANS, 12))
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK.mix(0.3))
-            .draw()?;
+        legend(
+            chart.configure_series_labels(),
+            SeriesLabelPosition::LowerLeft,
+            12,
+        )?;
     }
     Ok(())
 }
@@ -359,12 +369,11 @@ fn lines<DB: DrawingBackend>(
                     chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))?;
                 }
             }
-            chart
-                .configure_series_labels()
-                .label_font((SANS, 12))
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK.mix(0.3))
-                .draw()?;
+            legend(
+                chart.configure_series_labels(),
+                SeriesLabelPosition::UpperRight,
+                12,
+            )?;
         }};
     }
     match log {
