@@ -411,3 +411,64 @@ fn tolerance_flag_prints_its_choice_and_runs_it() {
     ]);
     assert_eq!(clash.status.code(), Some(2));
 }
+
+#[test]
+fn study_saves_its_chart_data_into_a_recording_and_reports_progress() {
+    let dir = Scratch::new("study-save");
+    let rrd = dir.path("study.rrd");
+    let out = rope(&[
+        "study",
+        "--segments",
+        "10,20",
+        "--dts",
+        "1e-2,3e-2",
+        "--reference-segments",
+        "40",
+        "--out",
+        dir.path("charts").to_str().unwrap(),
+        "--save",
+        rrd.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("8/8 runs done"),
+        "progress lines off a terminal: {stderr}"
+    );
+    assert!(String::from_utf8_lossy(&out.stdout).contains("Convergence in h"));
+    let rec = Recording::read(&rrd);
+    for entity in [
+        "study/findings",
+        "study/work_precision/seed",
+        "study/work_precision/chain",
+        "study/stability/seed",
+        "study/stability/chain",
+    ] {
+        assert!(
+            rec.has(entity),
+            "missing {entity}; have {:?}",
+            rec.chunks.keys()
+        );
+    }
+    assert!(dir.path("charts").join("study.csv").exists());
+}
+
+#[test]
+fn study_rejects_bad_grids_with_exit_2() {
+    for (args, named) in [
+        (&["--dts", "0"][..], "dts"),
+        (&["--segments", "1"][..], "segments"),
+        (&["--duration", "0"][..], "duration"),
+        (&["--reference-segments", "41"][..], "reference-segments"),
+    ] {
+        let mut full = vec!["study", "--out", "/nonexistent/never"];
+        full.extend_from_slice(args);
+        let out = rope(&full);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(
+            stderr.contains(named),
+            "{args:?} should name {named}: {stderr}"
+        );
+    }
+}
