@@ -121,7 +121,8 @@ impl RunConfig {
 }
 
 /// Runs `config`, streaming frames to `rec` when given (logging off otherwise), until the
-/// final time, divergence, or `stop`. Returns the summary; the recording is flushed.
+/// final time, divergence, or `stop`. Returns the summary; the recording is flushed, or the
+/// summary's `recording_error` says why it could not be.
 pub fn run(
     config: &RunConfig,
     rec: Option<rerun::RecordingStream>,
@@ -213,7 +214,9 @@ pub fn run(
         let logged = logger_thread.join().expect("the logger thread panicked");
         (outcome, samples, busy, logged)
     });
-    logged?;
+    // A recording that could not be completed (a viewer gone, a disk full) does not undo the
+    // run: the summary still says what was computed, and carries the error for the caller.
+    let recording_error = logged.err().map(|err| format!("{err:#}"));
     let wall = started.elapsed().as_secs_f64();
     let status = if outcome.diverged.is_some() {
         Status::Diverged
@@ -253,6 +256,7 @@ pub fn run(
         support_tension: outcome.support_tension,
         tip_samples: samples,
         period,
+        recording_error,
     })
 }
 

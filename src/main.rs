@@ -9,7 +9,8 @@ use std::process::ExitCode;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-/// Exit codes: 2 is bad input (as clap's own errors), 3 a diverged run, 130 an interrupted one.
+/// Exit codes: 2 is bad input (as clap's own errors), 3 a diverged run, 130 an interrupted one,
+/// 1 anything else (among it a recording that could not be completed).
 const EXIT_BAD_INPUT: u8 = 2;
 const EXIT_DIVERGED: u8 = 3;
 const EXIT_INTERRUPTED: u8 = 130;
@@ -77,6 +78,10 @@ fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
             .with_context(|| format!("writing the summary to {}", path.display()))?;
     }
     eprintln!("{}", summary.human());
+    if let Some(err) = &summary.recording_error {
+        eprintln!("rope: error: the recording is incomplete: {err}");
+        return Ok(ExitCode::FAILURE);
+    }
     Ok(match summary.status {
         Status::Ok => ExitCode::SUCCESS,
         Status::Diverged => ExitCode::from(EXIT_DIVERGED),

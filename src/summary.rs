@@ -55,6 +55,8 @@ pub struct Summary {
     pub tip_samples: Vec<[f64; 3]>,
     /// Oscillation period from the tip's zero crossings, for the `mode` scene.
     pub period: Option<f64>,
+    /// Why the recording could not be completed (e.g. the viewer went away), if it could not.
+    pub recording_error: Option<String>,
 }
 
 impl Summary {

@@ -472,3 +472,37 @@ fn study_rejects_bad_grids_with_exit_2() {
         );
     }
 }
+
+#[test]
+fn a_viewer_that_is_not_there_costs_the_recording_not_the_summary() {
+    // A free port on this machine with nothing listening.
+    let port = std::net::TcpListener::bind("127.0.0.1:0")
+        .unwrap()
+        .local_addr()
+        .unwrap()
+        .port();
+    let dir = Scratch::new("noviewer");
+    let json = dir.path("s.json");
+    let started = Instant::now();
+    let out = rope(&[
+        "run",
+        "--duration",
+        "0.5",
+        "--connect",
+        &format!("rerun+http://127.0.0.1:{port}/proxy"),
+        "--summary",
+        json.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        started.elapsed() < Duration::from_secs(20),
+        "took {:?}",
+        started.elapsed()
+    );
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("the recording is incomplete"), "{stderr}");
+    let s = summary(&json);
+    assert_eq!(s["status"], "ok");
+    assert_eq!(s["frames_logged"], 31);
+    assert!(s["recording_error"].is_string());
+}
