@@ -335,7 +335,7 @@ fn sigterm_mid_run_behaves_like_sigint() {
 
 #[test]
 fn bad_inputs_exit_2_naming_the_parameter() {
-    for (args, named) in [
+    let cases: [(&[&str], &str); 10] = [
         (&["--segments", "0"][..], "segments"),
         (&["--dt", "-1"][..], "dt"),
         (&["--dt", "0.05"][..], "dt"),
@@ -349,8 +349,14 @@ fn bad_inputs_exit_2_naming_the_parameter() {
         ),
         (&["--scene", "mode", "--amplitude", "NaN"][..], "amplitude"),
         (&["--segments", "-3"][..], "segments"),
-    ] {
-        let mut full = vec!["run", "--save", "/nonexistent/never-written.rrd"];
+    ];
+    assert_each_exits_2_naming(&["run", "--save", "/nonexistent/never-written.rrd"], &cases);
+}
+
+/// Runs `prefix` followed by each case's flags: each must exit 2 and name its parameter.
+fn assert_each_exits_2_naming(prefix: &[&str], cases: &[(&[&str], &str)]) {
+    for &(args, named) in cases {
+        let mut full = prefix.to_vec();
         full.extend_from_slice(args);
         let out = rope(&full);
         let stderr = String::from_utf8_lossy(&out.stderr);
@@ -455,22 +461,13 @@ fn study_saves_its_chart_data_into_a_recording_and_reports_progress() {
 
 #[test]
 fn study_rejects_bad_grids_with_exit_2() {
-    for (args, named) in [
+    let cases: [(&[&str], &str); 4] = [
         (&["--dts", "0"][..], "dts"),
         (&["--segments", "1"][..], "segments"),
         (&["--duration", "0"][..], "duration"),
         (&["--reference-segments", "41"][..], "reference-segments"),
-    ] {
-        let mut full = vec!["study", "--out", "/nonexistent/never"];
-        full.extend_from_slice(args);
-        let out = rope(&full);
-        let stderr = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
-        assert!(
-            stderr.contains(named),
-            "{args:?} should name {named}: {stderr}"
-        );
-    }
+    ];
+    assert_each_exits_2_naming(&["study", "--out", "/nonexistent/never"], &cases);
 }
 
 #[test]
