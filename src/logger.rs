@@ -34,8 +34,34 @@ pub mod path {
 pub const SIM_TIME: &str = "sim_time";
 pub const STEP: &str = "step";
 
-/// A time series: its entity path and how to read its value off a frame.
-type Series = (&'static str, fn(&Frame) -> f64);
+/// A time series: its entity path, legend name, colour, and how to read it off a frame.
+type Series = (&'static str, &'static str, [u8; 3], fn(&Frame) -> f64);
+
+/// Every time series the recording carries, styled once and filled by each batch.
+const SERIES: [Series; 7] = [
+    (path::KINETIC, "kinetic", [230, 120, 30], |f| {
+        f.energy.kinetic()
+    }),
+    (path::POTENTIAL, "potential", [60, 120, 220], |f| {
+        f.energy.potential
+    }),
+    (path::TOTAL, "total", [220, 220, 220], |f| f.energy.total()),
+    (
+        path::DEVIATION,
+        "(E − E_ref)/|E_ref|",
+        [200, 40, 40],
+        |f| f.energy_deviation,
+    ),
+    (path::SUPPORT_TENSION, "F_0", [200, 150, 0], |f| {
+        f.support_tension
+    }),
+    (path::TIP_SPEED, "|v_tip|", [40, 150, 80], |f| {
+        f.tip_velocity.norm()
+    }),
+    (path::TIP_ACCELERATION, "|a_tip|", [120, 60, 160], |f| {
+        f.tip_acceleration.norm()
+    }),
+];
 
 /// How many frames of the tip's path the trail keeps.
 const TRAIL_FRAMES: usize = 45;
@@ -126,16 +152,7 @@ impl RopeLogger {
                 .with_radii([0.008])
                 .with_colors([rerun::Color::from_rgb(230, 150, 0)]),
         )?;
-        let series = [
-            (path::KINETIC, "kinetic", [230, 120, 30]),
-            (path::POTENTIAL, "potential", [60, 120, 220]),
-            (path::TOTAL, "total", [220, 220, 220]),
-            (path::DEVIATION, "(E − E_ref)/|E_ref|", [200, 40, 40]),
-            (path::SUPPORT_TENSION, "F_0", [200, 150, 0]),
-            (path::TIP_SPEED, "|v_tip|", [40, 150, 80]),
-            (path::TIP_ACCELERATION, "|a_tip|", [120, 60, 160]),
-        ];
-        for (entity, name, [r, g, b]) in series {
+        for (entity, name, [r, g, b], _) in SERIES {
             rec.log_static(
                 entity,
                 &rerun::SeriesLines::new()
@@ -279,16 +296,7 @@ impl RopeLogger {
                 .columns(ones())?,
         )?;
 
-        let series: [Series; 7] = [
-            (path::KINETIC, |f| f.energy.kinetic()),
-            (path::POTENTIAL, |f| f.energy.potential),
-            (path::TOTAL, |f| f.energy.total()),
-            (path::DEVIATION, |f| f.energy_deviation),
-            (path::SUPPORT_TENSION, |f| f.support_tension),
-            (path::TIP_SPEED, |f| f.tip_velocity.norm()),
-            (path::TIP_ACCELERATION, |f| f.tip_acceleration.norm()),
-        ];
-        for (entity, value) in series {
+        for (entity, _, _, value) in SERIES {
             rec.send_columns(
                 entity,
                 times(),

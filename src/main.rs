@@ -145,7 +145,7 @@ fn study(args: &StudyArgs) -> anyhow::Result<ExitCode> {
         segments: args.segments.clone(),
         dts,
     };
-    let cells = spec.cells().len() as u64;
+    let cells = (spec.methods.len() * spec.segments.len() * spec.dts.len()) as u64;
     eprintln!(
         "rope study: {cells} runs ({} methods × {} N × {} k) on {} threads, reference at N = {reference_segments}",
         spec.methods.len(),
@@ -175,16 +175,15 @@ fn study(args: &StudyArgs) -> anyhow::Result<ExitCode> {
     let command = std::env::args().collect::<Vec<_>>().join(" ");
     let outcome = study::execute(&spec, reference_segments, &args.out, &command, progress)?;
     bar.finish_and_clear();
-    let markdown = outcome.findings.markdown(&outcome.reference, &command);
     if let Some(path) = &args.save {
         let rec = rerun::RecordingStreamBuilder::new("rope-study")
             .save(path)
             .with_context(|| format!("opening {}", path.display()))?;
-        study::record::log(&rec, &outcome, &markdown).context("logging the study")?;
+        study::record::log(&rec, &outcome).context("logging the study")?;
         rec.flush_blocking()
             .context("writing the study recording")?;
     }
-    println!("{markdown}");
+    println!("{}", outcome.markdown);
     eprintln!(
         "rope study: wrote study.csv, findings.md and the charts to {}",
         args.out.display()

@@ -334,6 +334,8 @@ pub struct Outcome {
     pub rows: Vec<Row>,
     pub reference: Reference,
     pub findings: findings::Findings,
+    /// The findings as written to `findings.md`.
+    pub markdown: String,
     pub startup: Vec<(MethodKind, Vec<(f64, f64)>)>,
 }
 
@@ -355,9 +357,9 @@ pub fn execute(
     let csv = out.join("study.csv");
     write_csv(&rows, &csv).with_context(|| format!("writing {}", csv.display()))?;
     let findings = findings::Findings::from_rows(&rows);
+    let markdown = findings.markdown(&reference, command);
     let md = out.join("findings.md");
-    std::fs::write(&md, findings.markdown(&reference, command))
-        .with_context(|| format!("writing {}", md.display()))?;
+    std::fs::write(&md, &markdown).with_context(|| format!("writing {}", md.display()))?;
     let startup: Vec<_> = spec
         .methods
         .iter()
@@ -374,6 +376,7 @@ pub fn execute(
         rows,
         reference,
         findings,
+        markdown,
         startup,
     })
 }

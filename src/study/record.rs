@@ -5,14 +5,10 @@ use super::{Outcome, Status};
 use crate::method::MethodKind;
 
 /// Logs the study's points (static: a study has no time axis) under `study/…`.
-pub fn log(
-    rec: &rerun::RecordingStream,
-    outcome: &Outcome,
-    findings_markdown: &str,
-) -> rerun::RecordingStreamResult<()> {
+pub fn log(rec: &rerun::RecordingStream, outcome: &Outcome) -> rerun::RecordingStreamResult<()> {
     rec.log_static(
         "study/findings",
-        &rerun::TextDocument::from_markdown(findings_markdown),
+        &rerun::TextDocument::from_markdown(outcome.markdown.as_str()),
     )?;
     for method in MethodKind::ALL {
         let mine: Vec<_> = outcome.rows.iter().filter(|r| r.method == method).collect();
