@@ -37,7 +37,8 @@ fn logging_overhead(c: &mut Criterion) {
             let rec = rerun::RecordingStreamBuilder::new("rope-bench")
                 .save(&path)
                 .expect("a writable temp file");
-            app::run(&config, Some(rec), &stop).expect("runs")
+            let mut logger = rope::logger::RopeLogger::new(rec).expect("styling logged");
+            app::run(&config, Some(&mut logger), &stop).expect("runs")
         })
     });
     group.finish();

@@ -11,6 +11,7 @@ use crate::simulate::{self, Frame, Options};
 use crate::summary::{EnergySummary, Status, Summary, Xy};
 use anyhow::Context as _;
 use crossbeam_channel::RecvTimeoutError;
+use std::collections::VecDeque;
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
@@ -27,6 +28,9 @@ const BATCH_WAIT: Duration = Duration::from_millis(50);
 
 /// How long the end of a run waits for a viewer to take the last data.
 const FLUSH_TIMEOUT: Duration = Duration::from_secs(5);
+
+/// Tip samples the summary keeps (the latest), so that an endless run's memory stays flat.
+pub const MAX_TIP_SAMPLES: usize = 1 << 16;
 
 /// A validated run.
 #[derive(Clone, Debug, PartialEq)]
@@ -57,7 +61,7 @@ impl RunConfig {
         allow_unstable: bool,
     ) -> Result<Self, ConfigError> {
         let dt = dt.unwrap_or_else(|| method.default_dt(segments.max(1)));
-        if !(duration.is_finite() && duration >= 0.0) {
+        if duration.is_nan() || duration < 0.0 {
             return Err(ConfigError::Duration(duration));
         }
         if !(log_rate.is_finite() && log_rate > 0.0) {
@@ -120,12 +124,13 @@ impl RunConfig {
     }
 }
 
-/// Runs `config`, streaming frames to `rec` when given (logging off otherwise), until the
-/// final time, divergence, or `stop`. Returns the summary; the recording is flushed, or the
-/// summary's `recording_error` says why it could not be.
+/// Runs `config`, streaming frames through `logger` when given (logging off otherwise), until
+/// the final time, divergence, or `stop`. Returns the summary; the recording is flushed, or
+/// the summary's `recording_error` says why it could not be. The run is placed on the
+/// logger's timelines after the runs it logged before.
 pub fn run(
     config: &RunConfig,
-    rec: Option<rerun::RecordingStream>,
+    mut logger: Option<&mut RopeLogger>,
     stop: &AtomicBool,
 ) -> anyhow::Result<Summary> {
     let mut method = config
@@ -137,16 +142,15 @@ pub fn run(
     };
     let started = Instant::now();
     let (tx, rx) = crossbeam_channel::bounded::<Frame>(CHANNEL_FRAMES);
-    let streaming = rec.is_some();
-    let logger = match rec {
-        Some(rec) => {
-            Some(RopeLogger::new(rec, &config.markdown()).context("logging the run's parameters")?)
-        }
-        None => None,
-    };
+    let streaming = logger.is_some();
+    if let Some(logger) = logger.as_deref_mut() {
+        logger
+            .begin_run(&config.markdown())
+            .context("logging the run's parameters")?;
+    }
     let (outcome, samples, busy, logged) = std::thread::scope(|scope| {
-        let logger_thread = scope.spawn(move || -> anyhow::Result<()> {
-            let Some(mut logger) = logger else {
+        let logger_thread = scope.spawn(|| -> anyhow::Result<()> {
+            let Some(logger) = logger.as_deref_mut() else {
                 return Ok(());
             };
             // Frames go out in batches of up to BATCH_FRAMES, or as soon as the simulation
@@ -186,11 +190,14 @@ pub fn run(
             Ok(())
         });
         let simulation = scope.spawn(|| {
-            let mut samples = Vec::new();
+            let mut samples = VecDeque::new();
             let mut waiting = Duration::ZERO;
             let outcome = simulate::run(method.as_mut(), &options, Some(stop), |frame| {
                 let tip = frame.tip();
-                samples.push([frame.time, tip.x, tip.y]);
+                if samples.len() == MAX_TIP_SAMPLES {
+                    samples.pop_front();
+                }
+                samples.push_back([frame.time, tip.x, tip.y]);
                 let wait_started = Instant::now();
                 if let Some(speed) = config.realtime {
                     pace(started, frame.time / speed, stop);
@@ -217,6 +224,9 @@ pub fn run(
     // A recording that could not be completed (a viewer gone, a disk full) does not undo the
     // run: the summary still says what was computed, and carries the error for the caller.
     let recording_error = logged.err().map(|err| format!("{err:#}"));
+    if let Some(logger) = logger {
+        logger.end_run(outcome.time, outcome.steps);
+    }
     let wall = started.elapsed().as_secs_f64();
     let status = if outcome.diverged.is_some() {
         Status::Diverged
@@ -254,7 +264,7 @@ pub fn run(
         },
         tip: Xy { x: tip.x, y: tip.y },
         support_tension: outcome.support_tension,
-        tip_samples: samples,
+        tip_samples: samples.into(),
         period,
         recording_error,
     })

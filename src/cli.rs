@@ -3,6 +3,7 @@
 use crate::app::RunConfig;
 use crate::error::ConfigError;
 use crate::method::MethodKind;
+use crate::output::OutputArgs;
 use crate::scene::Scene;
 use crate::study::model::{self, Choice};
 use std::path::PathBuf;
@@ -32,13 +33,15 @@ pub struct SceneArgs {
     #[arg(long, value_enum, default_value_t = SceneKind::Release)]
     pub scene: SceneKind,
 
-    /// Initial angle below the horizontal, in degrees (release scene), 0 to 90.
-    #[arg(long, default_value_t = 30.0, allow_negative_numbers = true)]
-    pub angle: f64,
+    /// Initial angle below the horizontal, in degrees (release scene), 0 to 90. `rope run`
+    /// takes a list (e.g. the report's 30,60,90) and runs the scenes one after another.
+    #[arg(long, value_delimiter = ',', default_values_t = [30.0], allow_negative_numbers = true)]
+    pub angle: Vec<f64>,
 
-    /// Which small-oscillation mode the `mode` scene starts in (1 to 4).
-    #[arg(long, default_value_t = 1)]
-    pub mode_number: u32,
+    /// Which small-oscillation mode the `mode` scene starts in (1 to 4); `rope run` takes a
+    /// list, as for --angle.
+    #[arg(long, value_delimiter = ',', default_values_t = [1])]
+    pub mode_number: Vec<u32>,
 
     /// Tip displacement of the `mode` scene, in string lengths (|A| ≤ 0.2).
     #[arg(long, default_value_t = 0.05, allow_negative_numbers = true)]
@@ -46,16 +49,37 @@ pub struct SceneArgs {
 }
 
 impl SceneArgs {
-    /// The scene the flags describe.
-    pub fn scene(&self) -> Scene {
+    /// The scenes the flags describe, in the order given.
+    pub fn scenes(&self) -> Vec<Scene> {
         match self.scene {
-            SceneKind::Release => Scene::Release {
-                angle_deg: self.angle,
-            },
-            SceneKind::Mode => Scene::Mode {
-                number: self.mode_number,
-                amplitude: self.amplitude,
-            },
+            SceneKind::Release => self
+                .angle
+                .iter()
+                .map(|&angle_deg| Scene::Release { angle_deg })
+                .collect(),
+            SceneKind::Mode => self
+                .mode_number
+                .iter()
+                .map(|&number| Scene::Mode {
+                    number,
+                    amplitude: self.amplitude,
+                })
+                .collect(),
+        }
+    }
+
+    /// The one scene a study is about.
+    pub fn scene(&self) -> Result<Scene, String> {
+        match self.scenes().as_slice() {
+            [scene] => Ok(*scene),
+            scenes => Err(format!(
+                "{}: a study is of one scene, {} given; run one study per scene",
+                match self.scene {
+                    SceneKind::Release => "angle",
+                    SceneKind::Mode => "mode-number",
+                },
+                scenes.len()
+            )),
         }
     }
 }
@@ -130,9 +154,17 @@ pub struct RunArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
 
-    /// Simulated time to run, in time units.
+    /// Simulated time to run, in time units; `inf` runs until Ctrl-C (with --realtime, a
+    /// rope that swings on a screen for as long as it is left).
     #[arg(long, default_value_t = 3.0, allow_negative_numbers = true)]
     pub duration: f64,
+
+    /// Run the scenes (see --angle) again and again, PASSES times over the list [default:
+    /// until Ctrl-C]. Each run starts where the previous one ended on the timelines, with its
+    /// parameters logged there.
+    #[arg(long = "loop", value_name = "PASSES", num_args = 0..=1)]
+    #[allow(clippy::option_option)]
+    pub repeat: Option<Option<u64>>,
 
     /// Choose method, segments and time step for a tip-position error of at most EPS (string
     /// lengths) at the final time, from the error model fitted to `rope study`; prints the
@@ -140,9 +172,10 @@ pub struct RunArgs {
     #[arg(long, value_name = "EPS", allow_negative_numbers = true, conflicts_with_all = ["method", "segments", "dt"])]
     pub tolerance: Option<f64>,
 
-    /// Numerical method.
-    #[arg(long, value_enum, default_value_t = MethodKind::Seed)]
-    pub method: MethodKind,
+    /// Numerical method [default: seed; chain for --duration inf, as the seed scheme
+    /// diverges after some tens of time units whatever its time step].
+    #[arg(long, value_enum)]
+    pub method: Option<MethodKind>,
 
     /// Frames logged per time unit.
     #[arg(long, default_value_t = 60.0, allow_negative_numbers = true)]
@@ -162,19 +195,56 @@ pub struct RunArgs {
     pub allow_unstable: bool,
 
     #[command(flatten)]
-    pub rerun: rerun::clap::RerunArgs,
+    pub output: OutputArgs,
 }
 
 impl RunArgs {
-    /// Validates the flags into a run; with `--tolerance`, also says what the rule chose.
-    pub fn config(&self) -> Result<(RunConfig, Option<Choice>), ConfigError> {
-        let scene = self.scene.scene();
+    /// Validates the flags into the runs to make, in order; with `--tolerance`, each also
+    /// says what the rule chose for it.
+    pub fn configs(&self) -> Result<Vec<(RunConfig, Option<Choice>)>, ConfigError> {
+        let scenes = self.scene.scenes();
+        if self.duration.is_infinite() && (self.repeat.is_some() || scenes.len() > 1) {
+            return Err(ConfigError::Loop(
+                "an endless run (--duration inf) never ends, so no other run can follow it; give a finite --duration to --loop or to a list of scenes".to_owned(),
+            ));
+        }
+        if self.repeat == Some(Some(0)) {
+            return Err(ConfigError::Loop(
+                "0 passes: give at least 1, or --loop alone to repeat until Ctrl-C".to_owned(),
+            ));
+        }
+        scenes.into_iter().map(|scene| self.config(scene)).collect()
+    }
+
+    /// The method asked for, or the default for the duration: an endless run needs one that
+    /// stays stable for ever.
+    pub fn method(&self) -> MethodKind {
+        match self.method {
+            Some(method) => method,
+            None if self.duration.is_infinite() => MethodKind::Chain,
+            None => MethodKind::Seed,
+        }
+    }
+
+    /// How many times to go through the list of scenes; `None` for until Ctrl-C.
+    pub fn passes(&self) -> Option<u64> {
+        match self.repeat {
+            None => Some(1),
+            Some(passes) => passes,
+        }
+    }
+
+    /// Validates the flags for one scene; with `--tolerance`, also says what the rule chose.
+    fn config(&self, scene: Scene) -> Result<(RunConfig, Option<Choice>), ConfigError> {
         let (method, segments, dt, choice) = match self.tolerance {
-            None => (self.method, self.segments, self.dt, None),
+            None => (self.method(), self.segments, self.dt, None),
             Some(eps) => {
                 scene.validate()?;
                 if !(eps.is_finite() && eps > 0.0) {
                     return Err(ConfigError::Tolerance(eps));
+                }
+                if self.duration.is_infinite() {
+                    return Err(ConfigError::ToleranceEndless(eps));
                 }
                 let choice = model::choose(eps, self.duration.max(0.0), &scene)
                     .ok_or(ConfigError::Tolerance(eps))?;

@@ -24,7 +24,7 @@ pub enum ConfigError {
         dt: f64,
         limit: f64,
     },
-    #[error("duration = {0}: must be a finite number of time units ≥ 0")]
+    #[error("duration = {0}: must be a number of time units ≥ 0, or inf for an endless run")]
     Duration(f64),
     #[error("log-rate = {0}: must be a finite number of frames per time unit > 0")]
     LogRate(f64),
@@ -44,6 +44,12 @@ pub enum ConfigError {
         segments: usize,
         seconds: f64,
     },
+    #[error(
+        "tolerance = {0}: is the tip error at the final time, and an endless run (--duration inf) has none; give a finite --duration, or choose --method, --segments and --dt"
+    )]
+    ToleranceEndless(f64),
+    #[error("loop: {0}")]
+    Loop(String),
     #[error("realtime = {0}: the speed must be a finite number > 0 (1 = one time unit per second)")]
     Realtime(f64),
     #[error(

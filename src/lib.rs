@@ -10,9 +10,12 @@
 //!   rods [`chain::Chain`]), [`geometry`] turns angles into positions and energy, and
 //!   [`simulate`] drives a method to a final time, producing [`simulate::Frame`]s and watching
 //!   for divergence;
-//! * the **edges**: [`logger`] writes frames to a Rerun recording stream, [`app`] wires the
-//!   simulation and the logger threads together for `rope run`, and [`study`] runs grids of
-//!   simulations and charts speed against accuracy for `rope study`.
+//! * the **edges**: [`logger`] writes frames to a Rerun recording stream, [`output`] opens
+//!   where it goes (a spawned or connected viewer, a gRPC endpoint viewers join at any time,
+//!   an `.rrd` file, stdout, or several at once) and [`viewer_link`] keeps a viewer that went
+//!   away from ever stalling a run; [`app`] wires the simulation and the logger threads
+//!   together for `rope run`, and [`study`] runs grids of simulations and charts speed
+//!   against accuracy for `rope study`.
 //!
 //! Units are dimensionless: length L = 1, gravity g = 1, mass per length 1, time in sqrt(L/g).
 //! Coordinates: x horizontal away from the support, **y pointing down**; φ is the angle of the
@@ -28,12 +31,14 @@ pub mod error;
 pub mod geometry;
 pub mod logger;
 pub mod method;
+pub mod output;
 pub mod scene;
 pub mod seed;
 pub mod simulate;
 pub mod study;
 pub mod summary;
 pub mod tridiagonal;
+pub mod viewer_link;
 
 pub use error::{ConfigError, Diverged};
 pub use method::{Method, MethodKind};

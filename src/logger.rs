@@ -103,23 +103,20 @@ pub fn blueprint() -> Blueprint {
     .with_time_panel(rerun::blueprint::TimePanel::new().with_timeline(SIM_TIME))
 }
 
-/// Streams frames of one run into a recording.
+/// Streams frames of runs into a recording. Runs follow one another on the timelines: each
+/// starts where the one before it ended (`--loop`), so one recording holds them all.
 pub struct RopeLogger {
     rec: RecordingStream,
     trail: VecDeque<[f32; 2]>,
+    /// Where the current run's t = 0 and step 0 lie on the timelines.
+    time_offset: f64,
+    step_offset: u64,
 }
 
 impl RopeLogger {
-    /// Logs what does not change over the run: the parameters text, the support, the colour
-    /// scale and the series' names and colours.
-    pub fn new(
-        rec: RecordingStream,
-        parameters_markdown: &str,
-    ) -> rerun::RecordingStreamResult<Self> {
-        rec.log_static(
-            path::PARAMETERS,
-            &rerun::TextDocument::from_markdown(parameters_markdown),
-        )?;
+    /// Logs what never changes: the support, the colour scale, and the series' names and
+    /// colours.
+    pub fn new(rec: RecordingStream) -> rerun::RecordingStreamResult<Self> {
         rec.log_static(
             path::SUPPORT,
             &rerun::Points2D::new([[0.0f32, 0.0]])
@@ -163,7 +160,33 @@ impl RopeLogger {
         Ok(Self {
             rec,
             trail: VecDeque::with_capacity(TRAIL_FRAMES),
+            time_offset: 0.0,
+            step_offset: 0,
         })
+    }
+
+    /// Starts a run at the current end of the timelines: logs its parameters there, and
+    /// starts a fresh trail.
+    pub fn begin_run(&mut self, parameters_markdown: &str) -> rerun::RecordingStreamResult<()> {
+        self.trail.clear();
+        let ones = std::iter::once(1);
+        self.rec.send_columns(
+            path::PARAMETERS,
+            [
+                rerun::TimeColumn::new_duration_secs(SIM_TIME, [self.time_offset]),
+                rerun::TimeColumn::new_sequence(STEP, [self.step_offset as i64]),
+            ],
+            rerun::TextDocument::update_fields()
+                .with_text(parameters_markdown)
+                .with_media_type(rerun::MediaType::markdown())
+                .columns(ones)?,
+        )
+    }
+
+    /// Ends a run that reached `time` after `steps`: the next one starts there.
+    pub fn end_run(&mut self, time: f64, steps: u64) {
+        self.time_offset += time;
+        self.step_offset += steps;
     }
 
     /// A static colour bar below the swing, F from 0 to [`SCALE_MAX`], labelled at its ends.
@@ -219,10 +242,17 @@ impl RopeLogger {
             return Ok(());
         }
         let rec = &self.rec;
+        let (time_offset, step_offset) = (self.time_offset, self.step_offset);
         let times = || {
             [
-                rerun::TimeColumn::new_duration_secs(SIM_TIME, frames.iter().map(|f| f.time)),
-                rerun::TimeColumn::new_sequence(STEP, frames.iter().map(|f| f.step as i64)),
+                rerun::TimeColumn::new_duration_secs(
+                    SIM_TIME,
+                    frames.iter().map(|f| time_offset + f.time),
+                ),
+                rerun::TimeColumn::new_sequence(
+                    STEP,
+                    frames.iter().map(|f| (step_offset + f.step) as i64),
+                ),
             ]
         };
         let point = |p: &crate::geometry::Point| [p.x as f32, p.y as f32];

@@ -6,8 +6,9 @@ use clap::Parser as _;
 use rope::cli::{Cli, Command, RunArgs, StudyArgs};
 use rope::summary::Status;
 use std::process::ExitCode;
-use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, OnceLock};
+use std::time::Duration;
 
 /// Exit codes: 2 is bad input (as clap's own errors), 3 a diverged run, 130 an interrupted one,
 /// 1 anything else (among it a recording that could not be completed).
@@ -31,29 +32,46 @@ fn main() -> ExitCode {
 }
 
 fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
-    let (config, choice) = match args.config() {
-        Ok(config) => config,
+    let runs = match args.configs() {
+        Ok(runs) => runs,
         Err(err) => {
             eprintln!("rope: bad input: {err}");
             return Ok(ExitCode::from(EXIT_BAD_INPUT));
         }
     };
-    if let (Some(choice), Some(eps)) = (choice, args.tolerance) {
-        eprintln!(
-            "rope: tolerance {eps:e}: chose the {} method, N = {}, k = {:e}; predicted tip error {:.1e}, predicted cost {:.2e} CPU s (error model fitted by `rope study` on the 30° release)",
-            choice.method,
-            choice.segments,
-            choice.dt,
-            choice.predicted_error,
-            choice.predicted_seconds
-        );
-    } else if args.dt.is_none() {
-        eprintln!(
+    let Some((first, _)) = runs.first() else {
+        anyhow::bail!("no scene to run");
+    };
+    match (args.tolerance, args.dt) {
+        (Some(eps), _) => {
+            for (config, choice) in runs.iter().filter_map(|(c, ch)| Some((c, ch.as_ref()?))) {
+                let scene = if runs.len() > 1 {
+                    format!(" ({:?})", config.scene)
+                } else {
+                    String::new()
+                };
+                eprintln!(
+                    "rope: tolerance {eps:e}{scene}: chose the {} method, N = {}, k = {:e}; predicted tip error {:.1e}, predicted cost {:.2e} CPU s (error model fitted by `rope study` on the 30° release)",
+                    choice.method,
+                    choice.segments,
+                    choice.dt,
+                    choice.predicted_error,
+                    choice.predicted_seconds
+                );
+            }
+        }
+        (None, None) => eprintln!(
             "rope: --dt not given: using k = {:.3e} for the {} method at N = {} (estimated stability limit {:.3e})",
-            config.dt,
-            config.method,
-            config.segments,
-            config.method.stability_limit(config.segments)
+            first.dt,
+            first.method,
+            first.segments,
+            first.method.stability_limit(first.segments)
+        ),
+        (None, Some(_)) => {}
+    }
+    if args.method.is_none() && args.tolerance.is_none() && args.duration.is_infinite() {
+        eprintln!(
+            "rope: an endless run uses the chain method: the seed scheme diverges after some tens of time units at any time step (--method seed to watch it)"
         );
     }
     let stop = Arc::new(AtomicBool::new(false));
@@ -66,11 +84,57 @@ fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
     })
     .context("installing the Ctrl-C / SIGTERM handler")?;
 
-    let (rec, _serve_guard) = args
-        .rerun
-        .init_with_blueprint("rope", rope::logger::blueprint())
-        .map_err(explain_viewer_error)?;
-    let summary = rope::app::run(&config, Some(rec), &stop)?;
+    let output = args
+        .output
+        .open("rope", rope::logger::blueprint())
+        .context("opening the Rerun recording")?;
+    if let Some(url) = &output.serving {
+        eprintln!(
+            "rope: serving at {url}: any number of viewers can join, at any time, with `rerun --connect {url}`; they get the history up to {}",
+            args.output.server_memory_limit
+        );
+    }
+    let viewer_lost = Arc::new(OnceLock::new());
+    if let Some(link) = output.viewer.clone() {
+        watch_viewer(
+            link,
+            output.survives_viewer_loss,
+            Arc::clone(&viewer_lost),
+            Arc::clone(&stop),
+        );
+    }
+    let mut logger =
+        rope::logger::RopeLogger::new(output.rec).context("logging the recording's styling")?;
+
+    let several = runs.len() > 1 || args.passes() != Some(1);
+    let mut last = None;
+    let mut pass = 0;
+    'passes: while args.passes().is_none_or(|passes| pass < passes) {
+        pass += 1;
+        for (config, _) in &runs {
+            let summary = rope::app::run(config, Some(&mut logger), &stop)?;
+            let ended = summary.status != Status::Ok || summary.recording_error.is_some();
+            if several {
+                let line = summary.human();
+                eprintln!("{}", line.lines().next().unwrap_or_default());
+            }
+            last = Some(summary);
+            if ended || stop.load(Ordering::SeqCst) {
+                break 'passes;
+            }
+        }
+    }
+    let Some(mut summary) = last else {
+        anyhow::bail!("no run was made");
+    };
+    if let Some(reason) = viewer_lost.get() {
+        summary.recording_error.get_or_insert_with(|| {
+            format!(
+                "{reason}; stopped at t = {:.3}",
+                summary.steps as f64 * summary.dt
+            )
+        });
+    }
 
     if let Some(path) = &args.summary {
         let json = serde_json::to_string_pretty(&summary).context("encoding the summary")?;
@@ -78,6 +142,15 @@ fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
             .with_context(|| format!("writing the summary to {}", path.display()))?;
     }
     eprintln!("{}", summary.human());
+    if let Some(url) = &output.serving
+        && !stop.load(Ordering::SeqCst)
+    {
+        eprintln!("rope: the run has ended; still serving it at {url} until Ctrl-C");
+        while !stop.load(Ordering::SeqCst) {
+            std::thread::sleep(Duration::from_millis(50));
+        }
+    }
+    drop(logger); // closes the recording: the file's footer, the last data to viewers
     if let Some(err) = &summary.recording_error {
         eprintln!("rope: error: the recording is incomplete: {err}");
         return Ok(ExitCode::FAILURE);
@@ -89,30 +162,41 @@ fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
     })
 }
 
-/// Adds what to do when the viewer cannot be spawned because it is not installed.
-fn explain_viewer_error(err: anyhow::Error) -> anyhow::Error {
-    let missing = matches!(
-        err.downcast_ref::<rerun::RecordingStreamError>(),
-        Some(rerun::RecordingStreamError::SpawnViewer(
-            rerun::SpawnError::ExecutableNotFoundInPath { .. }
-        ))
-    );
-    if missing {
-        err.context(
-            "the Rerun viewer is not installed: install it with `pip install rerun-sdk==0.36.3`, or save the recording with --save FILE.rrd and open it later",
-        )
-    } else {
-        err.context("opening the Rerun recording")
-    }
+/// Watches the viewer from a thread of its own. When it is gone: if a file or a served
+/// endpoint keeps the recording, says so once and lets the run go on; otherwise stops the
+/// run, leaving the reason in `lost` for the summary.
+fn watch_viewer(
+    link: rope::viewer_link::ViewerLink,
+    survives: bool,
+    lost: Arc<OnceLock<String>>,
+    stop: Arc<AtomicBool>,
+) {
+    std::thread::spawn(move || {
+        loop {
+            std::thread::sleep(Duration::from_millis(100));
+            if let Some(reason) = link.lost() {
+                if survives {
+                    eprintln!("rope: warning: {reason}; the run goes on without it");
+                } else {
+                    lost.set(reason).ok();
+                    stop.store(true, Ordering::SeqCst);
+                }
+                return;
+            }
+        }
+    });
 }
 
 fn study(args: &StudyArgs) -> anyhow::Result<ExitCode> {
     use rope::study;
-    let scene = args.scene.scene();
     let dts = args.dts();
     let bad = |what: String| -> anyhow::Result<ExitCode> {
         eprintln!("rope: bad input: {what}");
         Ok(ExitCode::from(EXIT_BAD_INPUT))
+    };
+    let scene = match args.scene.scene() {
+        Ok(scene) => scene,
+        Err(err) => return bad(err),
     };
     if let Err(err) = scene.validate() {
         return bad(err.to_string());

@@ -58,13 +58,24 @@ fn time_step_past_the_seed_stability_limit() {
 }
 
 #[test]
-fn duration_negative_or_not_finite() {
-    for d in [-1.0, f64::NAN] {
+fn duration_negative_or_nan_but_endless_is_fine() {
+    for d in [-1.0, f64::NAN, f64::NEG_INFINITY] {
         let err =
             RunConfig::new(MethodKind::Seed, THIRTY, 100, None, d, 60.0, None, false).unwrap_err();
         assert!(matches!(err, ConfigError::Duration(_)));
         assert!(err.to_string().starts_with("duration = "));
     }
+    let endless = RunConfig::new(
+        MethodKind::Chain,
+        THIRTY,
+        100,
+        None,
+        f64::INFINITY,
+        60.0,
+        None,
+        false,
+    );
+    assert!(endless.is_ok());
 }
 
 #[test]

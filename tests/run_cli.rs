@@ -1,96 +1,11 @@
 //! `rope run` as a user meets it: the real binary, headless, its recording read back with
 //! Rerun's own decoder.
 
-use rerun::external::re_log_encoding::rrd::DecoderApp;
-use rerun::external::re_log_types::LogMsg;
-use rerun::log::Chunk;
-use serde_json::Value;
-use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+mod common;
+
+use common::cli::{ROPE, Recording, Scratch, rope, summary};
+use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
-
-const ROPE: &str = env!("CARGO_BIN_EXE_rope");
-
-/// A scratch directory removed at the end of the test.
-struct Scratch(PathBuf);
-
-impl Scratch {
-    fn new(name: &str) -> Self {
-        let dir = std::env::temp_dir().join(format!("rope-test-{name}-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        Self(dir)
-    }
-    fn path(&self, file: &str) -> PathBuf {
-        self.0.join(file)
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
-fn rope(args: &[&str]) -> Output {
-    Command::new(ROPE)
-        .args(args)
-        .output()
-        .expect("the rope binary runs")
-}
-
-/// What a recording holds, per entity path of the recording store: the chunks' rows.
-#[derive(Default)]
-struct Recording {
-    chunks: BTreeMap<String, Vec<Chunk>>,
-}
-
-impl Recording {
-    fn decode(bytes: &[u8]) -> Self {
-        let mut rec = Recording::default();
-        for msg in DecoderApp::decode_lazy(bytes) {
-            let msg = msg.expect("the recording decodes");
-            if let LogMsg::ArrowMsg(store, arrow) = msg {
-                if !store.is_recording() {
-                    continue; // the blueprint
-                }
-                let chunk = Chunk::from_arrow_msg(&arrow).expect("a valid chunk");
-                let path = chunk
-                    .entity_path()
-                    .to_string()
-                    .trim_start_matches('/')
-                    .to_owned();
-                rec.chunks.entry(path).or_default().push(chunk);
-            }
-        }
-        rec
-    }
-
-    fn read(path: &Path) -> Self {
-        Self::decode(&std::fs::read(path).expect("the recording exists"))
-    }
-
-    /// Rows logged on the timelines (not static) for `entity`.
-    fn temporal_rows(&self, entity: &str) -> usize {
-        self.chunks
-            .get(entity)
-            .map(|cs| {
-                cs.iter()
-                    .filter(|c| !c.is_static())
-                    .map(|c| c.num_rows())
-                    .sum()
-            })
-            .unwrap_or(0)
-    }
-
-    fn has(&self, entity: &str) -> bool {
-        self.chunks.contains_key(entity)
-    }
-}
-
-fn summary(path: &Path) -> Value {
-    serde_json::from_str(&std::fs::read_to_string(path).expect("summary written")).expect("JSON")
-}
 
 #[test]
 fn saved_recording_has_every_entity_one_strip_per_segment_and_one_frame_per_log_interval() {

@@ -1,6 +1,8 @@
 //! Helpers shared by the physics tests: run a method and sample it.
 #![allow(dead_code)]
 
+pub mod cli;
+
 use rope::method::{Method, MethodKind};
 use rope::scene::Scene;
 use rope::simulate::{self, Frame, Options, Outcome};

@@ -1,0 +1,307 @@
+//! Where a run's recording goes: a spawned or connected viewer, a gRPC endpoint hosted in
+//! this process that viewers join at any time, an `.rrd` file, stdout, or several at once
+//! (`--spawn --save FILE` watches and keeps the run).
+//!
+//! This replaces `rerun::clap::RerunArgs`, which picks exactly one destination (`--save`
+//! silently wins over `--spawn`), binds its server to 0.0.0.0, and has no way to learn that
+//! a viewer has gone.
+
+use crate::viewer_link::{ViewerLink, ViewerSink};
+use rerun::RecordingStream;
+use rerun::blueprint::Blueprint;
+use rerun::sink::LogSink;
+use std::net::{IpAddr, Ipv4Addr, SocketAddr};
+use std::path::PathBuf;
+
+/// Rerun's default port, for `--connect` and `--serve-grpc`.
+pub const DEFAULT_PORT: u16 = 9876;
+
+/// What `--server-memory-limit` is when not given.
+pub const DEFAULT_SERVER_MEMORY_LIMIT: &str = "512MB";
+
+/// Rerun's server counts its history in encoded message bytes; the process holds 1.35 to 1.5
+/// times that (measured with `scripts/soak.sh`: 39.5 MB resident for a 20 MB history, 699 MB
+/// for 512 MB). The server is given what keeps the whole process within the user's limit.
+const HISTORY_OVERHEAD: f64 = 1.5;
+
+/// What the process needs besides the history (about 10 MB measured), with room to spare.
+const PROCESS_BASELINE: u64 = 32_000_000;
+
+/// The smallest `--server-memory-limit` that leaves the history room.
+const MIN_SERVER_MEMORY: u64 = 64_000_000;
+
+/// Where the recording goes.
+#[derive(Clone, Debug, clap::Args)]
+pub struct OutputArgs {
+    /// Start a Rerun viewer and stream to it; the default when no other destination is given.
+    /// With --save, the viewer shows the run while the file keeps it.
+    #[arg(long)]
+    pub spawn: bool,
+
+    /// Stream to a running viewer at URL [default: rerun+http://127.0.0.1:9876/proxy]. If it
+    /// goes away the run stops within seconds, or goes on when --save is also given.
+    #[arg(long, value_name = "URL", num_args = 0..=1, default_missing_value = "rerun+http://127.0.0.1:9876/proxy", value_parser = parse_connect_url, conflicts_with_all = ["spawn", "serve_grpc"])]
+    pub connect: Option<String>,
+
+    /// Host Rerun's gRPC endpoint in this process, so any number of viewers can join at any
+    /// time with `rerun --connect rerun+http://ADDR/proxy`, late ones getting the recent
+    /// history. ADDR is IP:PORT, IP or PORT [default: 127.0.0.1:9876]; name 0.0.0.0 to be
+    /// reachable from other machines. A finite run keeps serving until Ctrl-C.
+    #[arg(long, value_name = "ADDR", num_args = 0..=1, default_missing_value = "127.0.0.1:9876", value_parser = parse_serve_addr, conflicts_with = "spawn")]
+    pub serve_grpc: Option<SocketAddr>,
+
+    /// Memory the --serve-grpc process may use, its history for late viewers included, e.g.
+    /// 512MB, 2GB or 10% (of the machine's memory); beyond it the oldest data is dropped.
+    #[arg(long, value_name = "SIZE", default_value = DEFAULT_SERVER_MEMORY_LIMIT, value_parser = parse_memory_limit, requires = "serve_grpc")]
+    pub server_memory_limit: String,
+
+    /// Write the recording to FILE.rrd (as well as to a viewer, if one is named).
+    #[arg(long, value_name = "FILE.rrd")]
+    pub save: Option<PathBuf>,
+
+    /// Write the recording to standard output, to pipe into a viewer (`| rerun -`).
+    #[arg(long, short = 'o', conflicts_with_all = ["spawn", "connect", "serve_grpc", "save"])]
+    pub stdout: bool,
+}
+
+/// What could not be opened, and what would work.
+#[derive(Debug, thiserror::Error)]
+pub enum OutputError {
+    #[error(
+        "the Rerun viewer is not installed: install it with `pip install rerun-sdk==0.36.3`, or save the recording with --save FILE.rrd and open it later"
+    )]
+    ViewerNotInstalled,
+    #[error("could not start the Rerun viewer: {0}")]
+    Spawn(rerun::SpawnError),
+    #[error(
+        "connect = {url}: {reason}; expected rerun+http://HOST:PORT/proxy (the viewer prints its address)"
+    )]
+    ConnectUrl { url: String, reason: String },
+    #[error(
+        "serve-grpc = {addr}: cannot listen there ({source}); name a free port, e.g. --serve-grpc 127.0.0.1:9877"
+    )]
+    ServeAddress {
+        addr: SocketAddr,
+        source: std::io::Error,
+    },
+    #[error("save = {path}: cannot write there ({reason})")]
+    Save { path: PathBuf, reason: String },
+    #[error(
+        "stdout is a terminal: a recording is binary; pipe it into a viewer (`rope run --stdout | rerun -`) or use --save FILE.rrd"
+    )]
+    StdoutIsTerminal,
+    #[error("could not open the recording: {0}")]
+    Recording(#[from] rerun::RecordingStreamError),
+    #[error("could not start a thread: {0}")]
+    Thread(std::io::Error),
+}
+
+/// An open recording and what is attached to it.
+pub struct Output {
+    pub rec: RecordingStream,
+    /// The viewer streamed to (spawned or connected), to watch for its loss.
+    pub viewer: Option<ViewerLink>,
+    /// Where viewers can join, when serving.
+    pub serving: Option<String>,
+    /// Whether the recording outlives a lost viewer (a file or a served endpoint is kept).
+    pub survives_viewer_loss: bool,
+}
+
+impl OutputArgs {
+    /// Opens every destination named (or spawns a viewer when none is) and a recording that
+    /// sends to all of them.
+    pub fn open(
+        &self,
+        application_id: &'static str,
+        blueprint: Blueprint,
+    ) -> Result<Output, OutputError> {
+        let mut sinks: Vec<Box<dyn LogSink>> = Vec::new();
+        let mut viewer = None;
+        let mut serving = None;
+        if self.stdout {
+            if std::io::IsTerminal::is_terminal(&std::io::stdout()) {
+                return Err(OutputError::StdoutIsTerminal);
+            }
+            sinks.push(Box::new(rerun::sink::FileSink::stdout().map_err(
+                |err| OutputError::Save {
+                    path: "-".into(),
+                    reason: err.to_string(),
+                },
+            )?));
+        }
+        if let Some(path) = &self.save {
+            let sink = rerun::sink::FileSink::new(path).map_err(|err| OutputError::Save {
+                path: path.clone(),
+                reason: err.to_string(),
+            })?;
+            sinks.push(Box::new(sink));
+        }
+        let url = match (&self.connect, self.spawn || self.nothing_named()) {
+            (Some(url), _) => Some(url.clone()),
+            (None, true) => Some(spawn_viewer()?),
+            (None, false) => None,
+        };
+        if let Some(url) = url {
+            let sink = ViewerSink::connect(&url)?;
+            viewer = Some(sink.link());
+            sinks.push(Box::new(sink));
+        }
+        if let Some(addr) = self.serve_grpc {
+            sinks.push(Box::new(self.serve(addr)?));
+            serving = Some(format!("rerun+http://{addr}/proxy"));
+        }
+        let survives_viewer_loss = self.save.is_some() || serving.is_some();
+        let mut builder =
+            rerun::RecordingStreamBuilder::new(application_id).with_blueprint(blueprint);
+        if viewer.is_some() || serving.is_some() {
+            // Live viewers want data as it happens, not in the file sink's larger batches.
+            builder = builder.batcher_config(rerun::log::ChunkBatcherConfig::LOW_LATENCY);
+        }
+        let rec = builder.set_sinks(sinks)?;
+        Ok(Output {
+            rec,
+            viewer,
+            serving,
+            survives_viewer_loss,
+        })
+    }
+
+    fn nothing_named(&self) -> bool {
+        !self.stdout && self.save.is_none() && self.connect.is_none() && self.serve_grpc.is_none()
+    }
+
+    /// Hosts the gRPC endpoint, after checking that its address is free (Rerun's server
+    /// would only log a bind failure on its own thread, and the run would go on unseen).
+    fn serve(&self, addr: SocketAddr) -> Result<rerun::grpc_server::GrpcServerSink, OutputError> {
+        std::net::TcpListener::bind(addr)
+            .map_err(|source| OutputError::ServeAddress { addr, source })?;
+        let memory_limit = history_limit(&self.server_memory_limit);
+        let ip = match addr.ip() {
+            IpAddr::V4(ip) => ip.to_string(),
+            IpAddr::V6(ip) => format!("[{ip}]"),
+        };
+        rerun::grpc_server::GrpcServerSink::new(
+            &ip,
+            addr.port(),
+            rerun::ServerOptions {
+                playback_behavior: rerun::PlaybackBehavior::OldestFirst,
+                memory_limit,
+                cors_allowed_origins: Vec::new(),
+            },
+        )
+        .map_err(|err| OutputError::ServeAddress {
+            addr,
+            source: std::io::Error::new(std::io::ErrorKind::InvalidInput, err),
+        })
+    }
+}
+
+/// The history limit to give Rerun's server so that the process stays within `process_limit`.
+fn history_limit(process_limit: &str) -> rerun::MemoryLimit {
+    match rerun::MemoryLimit::parse(process_limit) {
+        Ok(limit) if limit.is_limited() => {
+            let room = limit.as_bytes().saturating_sub(PROCESS_BASELINE);
+            rerun::MemoryLimit::from_bytes((room as f64 / HISTORY_OVERHEAD) as u64)
+        }
+        Ok(unlimited) => unlimited,
+        // Checked when the flags were parsed; the default is the fallback.
+        Err(_) => history_limit(DEFAULT_SERVER_MEMORY_LIMIT),
+    }
+}
+
+/// Starts a viewer (or finds one already listening on the default port) and returns its URL.
+fn spawn_viewer() -> Result<String, OutputError> {
+    match rerun::spawn(&rerun::SpawnOptions::default()) {
+        Ok(spawned) => Ok(format!(
+            "rerun+http://{}/proxy",
+            SocketAddr::new(IpAddr::V4(Ipv4Addr::LOCALHOST), spawned.port)
+        )),
+        Err(rerun::SpawnError::ExecutableNotFoundInPath { .. }) => {
+            Err(OutputError::ViewerNotInstalled)
+        }
+        Err(err) => Err(OutputError::Spawn(err)),
+    }
+}
+
+/// `--connect URL`: a Rerun proxy URL.
+fn parse_connect_url(url: &str) -> Result<String, String> {
+    match url.parse::<rerun::external::re_uri::RedapUri>() {
+        Ok(rerun::external::re_uri::RedapUri::Proxy(_)) => Ok(url.to_owned()),
+        Ok(_) => Err(format!(
+            "{url} is not a viewer's /proxy endpoint; expected rerun+http://HOST:PORT/proxy"
+        )),
+        Err(err) => Err(format!(
+            "{err}; expected rerun+http://HOST:PORT/proxy (the viewer prints its address)"
+        )),
+    }
+}
+
+/// `--serve-grpc ADDR`: IP:PORT, IP (port 9876) or PORT (on 127.0.0.1).
+pub fn parse_serve_addr(text: &str) -> Result<SocketAddr, String> {
+    if let Ok(addr) = text.parse::<SocketAddr>() {
+        return Ok(addr);
+    }
+    if let Ok(ip) = text.parse::<IpAddr>() {
+        return Ok(SocketAddr::new(ip, DEFAULT_PORT));
+    }
+    if let Ok(port) = text.trim_start_matches(':').parse::<u16>() {
+        return Ok(SocketAddr::new(IpAddr::V4(Ipv4Addr::LOCALHOST), port));
+    }
+    Err(format!(
+        "{text:?} is not an address; give IP:PORT (127.0.0.1:9876), an IP (0.0.0.0 for every interface) or a PORT"
+    ))
+}
+
+/// `--server-memory-limit SIZE`.
+fn parse_memory_limit(text: &str) -> Result<String, String> {
+    match rerun::MemoryLimit::parse(text) {
+        Ok(limit) if limit.as_bytes() >= MIN_SERVER_MEMORY => Ok(text.to_owned()),
+        Ok(_) => Err(format!(
+            "{text}: the process needs about {} MB besides the served history; give at least 64MB",
+            PROCESS_BASELINE / 1_000_000
+        )),
+        Err(err) => Err(format!("{err}; give e.g. 512MB, 2GB or 10%")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn serve_address_defaults_to_loopback_and_port_9876() {
+        assert_eq!(
+            parse_serve_addr("127.0.0.1:9000").unwrap(),
+            "127.0.0.1:9000".parse().unwrap()
+        );
+        assert_eq!(
+            parse_serve_addr("0.0.0.0").unwrap(),
+            "0.0.0.0:9876".parse().unwrap()
+        );
+        assert_eq!(
+            parse_serve_addr("9001").unwrap(),
+            "127.0.0.1:9001".parse().unwrap()
+        );
+        assert_eq!(
+            parse_serve_addr("::1").unwrap(),
+            "[::1]:9876".parse().unwrap()
+        );
+        assert!(parse_serve_addr("localhost:x").is_err());
+    }
+
+    #[test]
+    fn the_history_gets_what_leaves_the_process_within_its_limit() {
+        let history = history_limit("512MB").as_bytes();
+        assert_eq!(history, 320_000_000);
+        assert!(history_limit("unlimited").is_unlimited());
+    }
+
+    #[test]
+    fn memory_limits_parse_like_rerun_and_refuse_too_little() {
+        assert!(parse_memory_limit("512MB").is_ok());
+        assert!(parse_memory_limit("10%").is_ok());
+        assert!(parse_memory_limit("0").is_err());
+        assert!(parse_memory_limit("20MB").is_err());
+        assert!(parse_memory_limit("lots").is_err());
+    }
+}

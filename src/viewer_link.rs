@@ -1,0 +1,309 @@
+//! A gRPC link to a viewer that can never stall the run or its exit.
+//!
+//! Rerun's [`GrpcSink`] blocks the caller while a viewer cannot take data (its queue holds
+//! 100 messages), retries a connection forever, and waits without a bound for a viewer to
+//! take the last data when it is dropped. For a process meant to run for hours beside viewers
+//! that come and go, [`ViewerSink`] puts a thread and a bounded queue in front of it: once the
+//! viewer is gone (disconnected, never answered, or took nothing for [`STALL`]) every further
+//! message is dropped at once, and [`ViewerLink`] says why, so the caller can stop or go on.
+
+use crate::output::OutputError;
+use crossbeam_channel::{Receiver, RecvTimeoutError, SendTimeoutError, Sender};
+use rerun::log::{ChunkBatcherConfig, LogMsg};
+use rerun::sink::{GrpcSink, GrpcSinkConnectionState, LogSink, SinkFlushError};
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, Mutex, PoisonError};
+use std::time::{Duration, Instant};
+
+/// How long a viewer may take to accept the connection.
+pub const CONNECT_GRACE: Duration = Duration::from_secs(5);
+
+/// How long a connected viewer may take no data at all before it counts as gone.
+pub const STALL: Duration = Duration::from_secs(5);
+
+/// The longest any flush waits for the viewer.
+pub const FLUSH_CAP: Duration = Duration::from_secs(5);
+
+/// Messages queued in front of Rerun's own queue: room for a viewer's hiccups.
+const QUEUE: usize = 1024;
+
+/// How often the forwarding thread looks at the connection while idle.
+const POLL: Duration = Duration::from_millis(100);
+
+/// The state of the link, shared between the sink and whoever watches it.
+#[derive(Clone, Debug, PartialEq)]
+enum State {
+    Connecting { since: Instant },
+    Connected,
+    Lost(String),
+}
+
+/// A handle to watch a [`ViewerSink`]: where it points and whether the viewer is still there.
+#[derive(Clone, Debug)]
+pub struct ViewerLink {
+    shared: Arc<Shared>,
+}
+
+#[derive(Debug)]
+struct Shared {
+    url: String,
+    state: Mutex<State>,
+    dropped: AtomicU64,
+}
+
+impl ViewerLink {
+    fn new(url: &str) -> Self {
+        Self {
+            shared: Arc::new(Shared {
+                url: url.to_owned(),
+                state: Mutex::new(State::Connecting {
+                    since: Instant::now(),
+                }),
+                dropped: AtomicU64::new(0),
+            }),
+        }
+    }
+
+    /// The viewer's address.
+    pub fn url(&self) -> &str {
+        &self.shared.url
+    }
+
+    /// `None` while the viewer is there (or still within [`CONNECT_GRACE`] of coming up);
+    /// once it is gone, why. A lost link stays lost.
+    pub fn lost(&self) -> Option<String> {
+        let mut state = self.state();
+        if let State::Connecting { since } = *state
+            && since.elapsed() > CONNECT_GRACE
+        {
+            *state = State::Lost(format!(
+                "no viewer answered at {} within {} s",
+                self.shared.url,
+                CONNECT_GRACE.as_secs()
+            ));
+        }
+        match &*state {
+            State::Lost(reason) => Some(reason.clone()),
+            _ => None,
+        }
+    }
+
+    /// Whether the viewer has accepted the connection (and is not lost since).
+    pub fn connected(&self) -> bool {
+        *self.state() == State::Connected
+    }
+
+    /// Messages dropped because the viewer was gone.
+    pub fn dropped(&self) -> u64 {
+        self.shared.dropped.load(Ordering::Relaxed)
+    }
+
+    fn state(&self) -> std::sync::MutexGuard<'_, State> {
+        self.shared
+            .state
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+    }
+
+    fn lose(&self, reason: String) {
+        let mut state = self.state();
+        if !matches!(*state, State::Lost(_)) {
+            *state = State::Lost(reason);
+        }
+    }
+
+    /// Takes in what Rerun's client reports.
+    fn observe(&self, status: GrpcSinkConnectionState) {
+        match status {
+            GrpcSinkConnectionState::Connecting { .. } => {}
+            GrpcSinkConnectionState::Connected => {
+                let mut state = self.state();
+                if matches!(*state, State::Connecting { .. }) {
+                    *state = State::Connected;
+                }
+            }
+            GrpcSinkConnectionState::Disconnected(Ok(())) => {
+                self.lose(format!(
+                    "the viewer at {} closed the connection",
+                    self.url()
+                ));
+            }
+            GrpcSinkConnectionState::Disconnected(Err(err)) => {
+                self.lose(format!("the viewer at {} went away: {err}", self.url()));
+            }
+        }
+    }
+
+    fn drop_message(&self) {
+        self.shared.dropped.fetch_add(1, Ordering::Relaxed);
+    }
+}
+
+enum Command {
+    Message(LogMsg),
+    Flush(Sender<Result<(), String>>),
+}
+
+/// A [`LogSink`] that sends to a viewer over gRPC and never blocks for longer than
+/// [`STALL`] on a message, nor [`FLUSH_CAP`] on a flush or on being dropped.
+pub struct ViewerSink {
+    commands: Option<Sender<Command>>,
+    link: ViewerLink,
+    finished: Receiver<()>,
+}
+
+impl ViewerSink {
+    /// Connects to the viewer at `url` (`rerun+http://host:port/proxy`).
+    pub fn connect(url: &str) -> Result<Self, OutputError> {
+        let bad_url = |reason: String| OutputError::ConnectUrl {
+            url: url.to_owned(),
+            reason,
+        };
+        let uri = match url.parse() {
+            Ok(rerun::external::re_uri::RedapUri::Proxy(uri)) => uri,
+            Ok(_) => return Err(bad_url("not a `/proxy` endpoint".to_owned())),
+            Err(err) => return Err(bad_url(err.to_string())),
+        };
+        let link = ViewerLink::new(url);
+        let (commands, queue) = crossbeam_channel::bounded(QUEUE);
+        let (done, finished) = crossbeam_channel::bounded(1);
+        let watched = link.clone();
+        std::thread::Builder::new()
+            .name("rope_viewer_link".to_owned())
+            .spawn(move || {
+                forward(GrpcSink::new(uri), &queue, &watched);
+                done.send(()).ok();
+            })
+            .map_err(OutputError::Thread)?;
+        Ok(Self {
+            commands: Some(commands),
+            link,
+            finished,
+        })
+    }
+
+    /// A handle to watch the link with.
+    pub fn link(&self) -> ViewerLink {
+        self.link.clone()
+    }
+}
+
+/// The forwarding thread: hands the queue to Rerun's client while the viewer is there.
+fn forward(sink: GrpcSink, queue: &Receiver<Command>, link: &ViewerLink) {
+    loop {
+        let command = queue.recv_timeout(POLL);
+        link.observe(sink.status());
+        match command {
+            Ok(Command::Message(msg)) => {
+                if link.lost().is_some() {
+                    link.drop_message();
+                } else {
+                    sink.send(msg);
+                }
+            }
+            Ok(Command::Flush(reply)) => {
+                let result = match link.lost() {
+                    Some(_) => Ok(()),
+                    None => sink.flush_blocking(FLUSH_CAP).map_err(|err| {
+                        format!("the viewer at {} did not take the data: {err}", link.url())
+                    }),
+                };
+                link.observe(sink.status());
+                reply.send(result).ok();
+            }
+            Err(RecvTimeoutError::Timeout) => {}
+            Err(RecvTimeoutError::Disconnected) => break,
+        }
+    }
+    if link.lost().is_some() {
+        // Dropping Rerun's client waits, without a bound, for the viewer to take what is
+        // queued; a viewer that is gone never will. Its thread ends with the process.
+        std::mem::forget(sink);
+    }
+}
+
+impl LogSink for ViewerSink {
+    fn send(&self, msg: LogMsg) {
+        let Some(commands) = &self.commands else {
+            return;
+        };
+        if self.link.lost().is_some() {
+            self.link.drop_message();
+            return;
+        }
+        // A viewer still coming up gets what is left of its grace; a connected one, STALL.
+        let patience = match *self.link.state() {
+            State::Connecting { since } => CONNECT_GRACE.saturating_sub(since.elapsed()),
+            _ => STALL,
+        };
+        match commands.send_timeout(Command::Message(msg), patience) {
+            Ok(()) => {}
+            Err(SendTimeoutError::Timeout(_)) => {
+                self.link.drop_message();
+                let reason = if self.link.connected() {
+                    format!(
+                        "the viewer at {} took no data for {} s",
+                        self.link.url(),
+                        STALL.as_secs()
+                    )
+                } else {
+                    format!(
+                        "no viewer answered at {} within {} s",
+                        self.link.url(),
+                        CONNECT_GRACE.as_secs()
+                    )
+                };
+                self.link.lose(reason);
+            }
+            Err(SendTimeoutError::Disconnected(_)) => self.link.drop_message(),
+        }
+    }
+
+    /// Waits (at most [`FLUSH_CAP`]) for the viewer to take everything sent so far. Never
+    /// fails: a viewer that cannot take it is marked lost, and the link reports that, once.
+    fn flush_blocking(&self, timeout: Duration) -> Result<(), SinkFlushError> {
+        let Some(commands) = &self.commands else {
+            return Ok(());
+        };
+        if self.link.lost().is_some() {
+            return Ok(());
+        }
+        let timeout = timeout.min(FLUSH_CAP);
+        let started = Instant::now();
+        let (reply, answer) = crossbeam_channel::bounded(1);
+        let answered = commands
+            .send_timeout(Command::Flush(reply), timeout)
+            .ok()
+            .and_then(|()| {
+                answer
+                    .recv_timeout(timeout.saturating_sub(started.elapsed()) + POLL)
+                    .ok()
+            });
+        match answered {
+            Some(Ok(())) => {}
+            Some(Err(reason)) => self.link.lose(reason),
+            None => self.link.lose(format!(
+                "the viewer at {} did not take the data within {} s",
+                self.link.url(),
+                timeout.as_secs_f64()
+            )),
+        }
+        Ok(())
+    }
+
+    fn default_batcher_config(&self) -> ChunkBatcherConfig {
+        ChunkBatcherConfig::LOW_LATENCY
+    }
+}
+
+impl Drop for ViewerSink {
+    fn drop(&mut self) {
+        // Closing the queue ends the forwarding thread once it has handed everything over;
+        // it gets FLUSH_CAP (and a little) to do so, and is left behind after that, or at
+        // once when the viewer is known to be gone.
+        self.commands = None;
+        if self.link.lost().is_none() {
+            self.finished.recv_timeout(FLUSH_CAP + POLL * 2).ok();
+        }
+    }
+}

@@ -1,0 +1,111 @@
+//! Helpers for the tests that run the `rope` binary: scratch directories, the binary, and
+//! recordings decoded with Rerun's own decoder.
+
+use rerun::external::re_log_encoding::rrd::DecoderApp;
+use rerun::external::re_log_types::LogMsg;
+use rerun::log::Chunk;
+use serde_json::Value;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+pub const ROPE: &str = env!("CARGO_BIN_EXE_rope");
+
+/// A scratch directory removed at the end of the test.
+pub struct Scratch(pub PathBuf);
+
+impl Scratch {
+    pub fn new(name: &str) -> Self {
+        let dir = std::env::temp_dir().join(format!("rope-test-{name}-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        Self(dir)
+    }
+    pub fn path(&self, file: &str) -> PathBuf {
+        self.0.join(file)
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+pub fn rope(args: &[&str]) -> Output {
+    Command::new(ROPE)
+        .args(args)
+        .output()
+        .expect("the rope binary runs")
+}
+
+/// What a recording holds, per entity path of the recording store: the chunks' rows.
+#[derive(Default)]
+pub struct Recording {
+    pub chunks: BTreeMap<String, Vec<Chunk>>,
+}
+
+impl Recording {
+    pub fn decode(bytes: &[u8]) -> Self {
+        let mut rec = Recording::default();
+        for msg in DecoderApp::decode_lazy(bytes) {
+            rec.add(msg.expect("the recording decodes"));
+        }
+        rec
+    }
+
+    /// Takes in one message of a recording (file or stream); the blueprint is skipped.
+    pub fn add(&mut self, msg: LogMsg) {
+        if let LogMsg::ArrowMsg(store, arrow) = msg {
+            if !store.is_recording() {
+                return; // the blueprint
+            }
+            let chunk = Chunk::from_arrow_msg(&arrow).expect("a valid chunk");
+            let path = chunk
+                .entity_path()
+                .to_string()
+                .trim_start_matches('/')
+                .to_owned();
+            self.chunks.entry(path).or_default().push(chunk);
+        }
+    }
+
+    /// The `sim_time` of every temporal row of `entity`, in seconds, sorted.
+    pub fn sim_times(&self, entity: &str) -> Vec<f64> {
+        let timeline = rerun::TimelineName::from_static_str("sim_time");
+        let mut times: Vec<f64> = self
+            .chunks
+            .get(entity)
+            .into_iter()
+            .flatten()
+            .filter_map(|c| c.timelines().get(&timeline))
+            .flat_map(|column| column.times_raw().iter().map(|&ns| ns as f64 * 1e-9))
+            .collect();
+        times.sort_by(f64::total_cmp);
+        times
+    }
+
+    pub fn read(path: &Path) -> Self {
+        Self::decode(&std::fs::read(path).expect("the recording exists"))
+    }
+
+    /// Rows logged on the timelines (not static) for `entity`.
+    pub fn temporal_rows(&self, entity: &str) -> usize {
+        self.chunks
+            .get(entity)
+            .map(|cs| {
+                cs.iter()
+                    .filter(|c| !c.is_static())
+                    .map(|c| c.num_rows())
+                    .sum()
+            })
+            .unwrap_or(0)
+    }
+
+    pub fn has(&self, entity: &str) -> bool {
+        self.chunks.contains_key(entity)
+    }
+}
+
+pub fn summary(path: &Path) -> Value {
+    serde_json::from_str(&std::fs::read_to_string(path).expect("summary written")).expect("JSON")
+}

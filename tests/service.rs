@@ -1,0 +1,418 @@
+//! `rope run` left running: a served endpoint that late viewers join, endless and looping
+//! runs, and viewers that go away mid-stream. Every process here is real: the viewer-side
+//! endpoint is a second `rope` hosting Rerun's gRPC server (`--serve-grpc`), killed with
+//! SIGKILL, and the late viewer reads with Rerun's own gRPC client.
+
+mod common;
+
+use common::cli::{ROPE, Recording, Scratch, rope, summary};
+use rerun::external::re_grpc_client;
+use std::io::Read as _;
+use std::process::{Child, Command, ExitStatus, Stdio};
+use std::time::{Duration, Instant};
+
+/// A port on 127.0.0.1 that nothing listens on (just now).
+fn free_port() -> u16 {
+    std::net::TcpListener::bind("127.0.0.1:0")
+        .and_then(|l| l.local_addr())
+        .expect("a free port")
+        .port()
+}
+
+fn url(port: u16) -> String {
+    format!("rerun+http://127.0.0.1:{port}/proxy")
+}
+
+/// Starts `rope` with `args`, stderr captured.
+fn start(args: &[&str]) -> Child {
+    Command::new(ROPE)
+        .args(args)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the rope binary runs")
+}
+
+fn signal(child: &Child, signal: &str) {
+    let sent = Command::new("kill")
+        .args([signal, &child.id().to_string()])
+        .status()
+        .expect("kill runs");
+    assert!(sent.success());
+}
+
+/// Waits up to `limit` for `child` to exit; `None` if it is still running then.
+fn wait_for(child: &mut Child, limit: Duration) -> Option<ExitStatus> {
+    let started = Instant::now();
+    loop {
+        if let Some(status) = child.try_wait().expect("try_wait") {
+            return Some(status);
+        }
+        if started.elapsed() > limit {
+            return None;
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
+fn stderr_of(child: &mut Child) -> String {
+    let mut text = String::new();
+    if let Some(mut err) = child.stderr.take() {
+        err.read_to_string(&mut text).ok();
+    }
+    text
+}
+
+/// Waits until something listens on `port`.
+fn wait_listening(port: u16) {
+    let started = Instant::now();
+    while std::net::TcpStream::connect(("127.0.0.1", port)).is_err() {
+        assert!(
+            started.elapsed() < Duration::from_secs(20),
+            "nothing listens on {port}"
+        );
+        std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
+/// A viewer's side of the stream: Rerun's gRPC reader, connected to a served endpoint.
+struct LateViewer {
+    messages: re_log_channel::LogReceiver,
+    _runtime: tokio::runtime::Runtime,
+}
+
+impl LateViewer {
+    fn join(port: u16) -> Self {
+        let runtime = tokio::runtime::Builder::new_multi_thread()
+            .worker_threads(1)
+            .enable_all()
+            .build()
+            .expect("a tokio runtime");
+        let handle = re_async::AsyncRuntimeHandle::new_native(runtime.handle().clone());
+        let uri = url(port).parse().expect("a proxy URI");
+        Self {
+            messages: re_grpc_client::read::stream(&handle, uri),
+            _runtime: runtime,
+        }
+    }
+
+    /// Reads into `rec` until `done(rec)` holds or `limit` passes; says whether it held.
+    fn read_until(
+        &self,
+        rec: &mut Recording,
+        limit: Duration,
+        done: impl Fn(&Recording) -> bool,
+    ) -> bool {
+        use re_log_channel::{DataSourceMessage, SmartMessagePayload};
+        let started = Instant::now();
+        while started.elapsed() < limit {
+            if done(rec) {
+                return true;
+            }
+            if let Ok(msg) = self.messages.recv_timeout(Duration::from_millis(100))
+                && let SmartMessagePayload::Msg(DataSourceMessage::LogMsg(msg)) = msg.payload
+            {
+                rec.add(msg);
+            }
+        }
+        done(rec)
+    }
+}
+
+#[test]
+fn a_viewer_that_joins_after_the_run_gets_every_frame_and_sigterm_ends_the_serving() {
+    let dir = Scratch::new("serve-late");
+    let json = dir.path("s.json");
+    let port = free_port();
+    let mut server = start(&[
+        "run",
+        "--duration",
+        "2",
+        "--serve-grpc",
+        &format!("127.0.0.1:{port}"),
+        "--summary",
+        json.to_str().unwrap(),
+    ]);
+    // The summary is written when the run has ended; the process then goes on serving.
+    let started = Instant::now();
+    while !json.exists() {
+        assert!(started.elapsed() < Duration::from_secs(30), "no summary");
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    std::thread::sleep(Duration::from_millis(200));
+    let frames = summary(&json)["frames_logged"].as_u64().unwrap() as usize;
+    assert_eq!(frames, 121);
+
+    let viewer = LateViewer::join(port);
+    let mut rec = Recording::default();
+    let complete = viewer.read_until(&mut rec, Duration::from_secs(20), |r| {
+        r.temporal_rows("rope/segments") >= frames
+    });
+    assert!(
+        complete,
+        "the late viewer got {} of {frames} frames",
+        rec.temporal_rows("rope/segments")
+    );
+    assert!(rec.has("parameters") && rec.has("energy/total"));
+    let times = rec.sim_times("rope/segments");
+    assert_eq!(times.first().copied(), Some(0.0), "history from t = 0");
+    assert!((times.last().unwrap() - 2.0).abs() < 1e-9);
+
+    assert!(
+        wait_for(&mut server, Duration::ZERO).is_none(),
+        "still serving"
+    );
+    let sent = Instant::now();
+    signal(&server, "-TERM");
+    let status = wait_for(&mut server, Duration::from_secs(5)).expect("stopped");
+    assert!(
+        sent.elapsed() < Duration::from_secs(1),
+        "{:?}",
+        sent.elapsed()
+    );
+    let stderr = stderr_of(&mut server);
+    assert_eq!(status.code(), Some(0), "{stderr}");
+    assert!(
+        stderr.contains(&format!("serving at {}", url(port))),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn an_endless_served_run_streams_history_then_live_frames_to_a_late_viewer() {
+    let port = free_port();
+    let mut server = start(&[
+        "run",
+        "--duration",
+        "inf",
+        "--realtime",
+        "2",
+        "--serve-grpc",
+        &port.to_string(),
+    ]);
+    wait_listening(port);
+    std::thread::sleep(Duration::from_millis(1500));
+    let viewer = LateViewer::join(port);
+    let mut rec = Recording::default();
+    // By now the run is at t ≈ 3; the viewer gets that history, then frames as they come.
+    let live = viewer.read_until(&mut rec, Duration::from_secs(20), |r| {
+        r.sim_times("rope/segments")
+            .last()
+            .is_some_and(|&t| t > 6.0)
+    });
+    let times = rec.sim_times("rope/segments");
+    assert!(live, "latest frame at t = {:?}", times.last());
+    assert_eq!(times.first().copied(), Some(0.0), "history from t = 0");
+    // 60 frames per time unit, none missing in between.
+    let expected = (times.last().unwrap() * 60.0).round() as usize + 1;
+    assert_eq!(times.len(), expected);
+
+    let sent = Instant::now();
+    signal(&server, "-TERM");
+    let status = wait_for(&mut server, Duration::from_secs(5)).expect("stopped");
+    assert!(
+        sent.elapsed() < Duration::from_secs(1),
+        "{:?}",
+        sent.elapsed()
+    );
+    let stderr = stderr_of(&mut server);
+    assert_eq!(status.code(), Some(130), "{stderr}");
+    assert!(
+        stderr.contains("an endless run uses the chain method"),
+        "{stderr}"
+    );
+}
+
+/// A viewer-side endpoint this test controls: a `rope` hosting Rerun's gRPC server.
+fn endpoint(port: u16) -> Child {
+    let endpoint = start(&[
+        "run",
+        "--duration",
+        "inf",
+        "--realtime",
+        "--log-rate",
+        "1",
+        "--serve-grpc",
+        &format!("127.0.0.1:{port}"),
+    ]);
+    wait_listening(port);
+    endpoint
+}
+
+#[test]
+fn a_killed_viewer_stops_a_connect_only_run_within_seconds_with_a_clear_message() {
+    let dir = Scratch::new("viewer-killed");
+    let json = dir.path("c.json");
+    let port = free_port();
+    let mut viewer = endpoint(port);
+    let mut run = start(&[
+        "run",
+        "--duration",
+        "inf",
+        "--realtime",
+        "--connect",
+        &url(port),
+        "--summary",
+        json.to_str().unwrap(),
+    ]);
+    std::thread::sleep(Duration::from_millis(1500));
+    assert!(wait_for(&mut run, Duration::ZERO).is_none(), "streaming");
+    signal(&viewer, "-KILL");
+    let killed = Instant::now();
+    wait_for(&mut viewer, Duration::from_secs(5)).expect("the viewer is gone");
+    let status = wait_for(&mut run, Duration::from_secs(15)).expect("the run stopped");
+    let took = killed.elapsed();
+    let stderr = stderr_of(&mut run);
+    assert!(took < Duration::from_secs(8), "took {took:?}: {stderr}");
+    assert_eq!(status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("the recording is incomplete") && stderr.contains(&url(port)),
+        "{stderr}"
+    );
+    let s = summary(&json);
+    assert_eq!(s["status"], "interrupted");
+    assert!(s["recording_error"].as_str().unwrap().contains(&url(port)));
+    assert!(s["frames_logged"].as_u64().unwrap() >= 60);
+}
+
+#[test]
+fn a_killed_viewer_leaves_a_watch_and_save_run_going_and_its_file_complete() {
+    let dir = Scratch::new("viewer-killed-save");
+    let (rrd, json) = (dir.path("w.rrd"), dir.path("w.json"));
+    let port = free_port();
+    let mut viewer = endpoint(port);
+    let mut run = start(&[
+        "run",
+        "--duration",
+        "inf",
+        "--realtime",
+        "2",
+        "--connect",
+        &url(port),
+        "--save",
+        rrd.to_str().unwrap(),
+        "--summary",
+        json.to_str().unwrap(),
+    ]);
+    std::thread::sleep(Duration::from_millis(1500));
+    signal(&viewer, "-KILL");
+    wait_for(&mut viewer, Duration::from_secs(5)).expect("the viewer is gone");
+    // The run goes on without the viewer.
+    assert!(
+        wait_for(&mut run, Duration::from_millis(2500)).is_none(),
+        "the run stopped with its viewer: {}",
+        stderr_of(&mut run)
+    );
+    let sent = Instant::now();
+    signal(&run, "-TERM");
+    let status = wait_for(&mut run, Duration::from_secs(10)).expect("stopped");
+    assert!(
+        sent.elapsed() < Duration::from_secs(1),
+        "{:?}",
+        sent.elapsed()
+    );
+    let stderr = stderr_of(&mut run);
+    assert_eq!(status.code(), Some(130), "{stderr}");
+    assert!(
+        stderr.contains("warning") && stderr.contains("goes on"),
+        "{stderr}"
+    );
+    let s = summary(&json);
+    assert_eq!(s["status"], "interrupted");
+    assert!(s["recording_error"].is_null(), "{}", s["recording_error"]);
+    let frames = s["frames_logged"].as_u64().unwrap() as usize;
+    let saved = Recording::read(&rrd);
+    assert_eq!(saved.temporal_rows("rope/segments"), frames);
+    // Frames from after the viewer died (t ≈ 3 at realtime 2) are in the file.
+    assert!(*saved.sim_times("rope/segments").last().unwrap() > 6.0);
+}
+
+#[test]
+fn a_frozen_viewer_counts_as_gone_once_it_takes_nothing_for_5_s() {
+    let port = free_port();
+    let mut viewer = endpoint(port);
+    let mut run = start(&[
+        "run",
+        "--duration",
+        "inf",
+        "--realtime",
+        "4",
+        "--connect",
+        &url(port),
+    ]);
+    std::thread::sleep(Duration::from_millis(1500));
+    signal(&viewer, "-STOP"); // alive, connected, and reading nothing
+    let frozen = Instant::now();
+    let status = wait_for(&mut run, Duration::from_secs(30));
+    signal(&viewer, "-KILL");
+    viewer.wait().ok();
+    let status = status.expect("the run stopped");
+    let stderr = stderr_of(&mut run);
+    // Rerun's and this link's queues fill first, then 5 s of nothing taken.
+    assert!(
+        frozen.elapsed() < Duration::from_secs(15),
+        "took {:?}: {stderr}",
+        frozen.elapsed()
+    );
+    assert_eq!(status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("took no data for 5 s"), "{stderr}");
+}
+
+#[test]
+fn a_loop_runs_the_scenes_in_turn_one_after_another_on_the_timeline() {
+    let dir = Scratch::new("loop");
+    let rrd = dir.path("l.rrd");
+    let out = rope(&[
+        "run",
+        "--loop",
+        "2",
+        "--angle",
+        "30,60",
+        "--duration",
+        "0.5",
+        "--save",
+        rrd.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert_eq!(stderr.matches("release at 30°").count(), 2, "{stderr}");
+    assert_eq!(stderr.matches("release at 60°").count(), 3, "{stderr}"); // and the summary
+    let rec = Recording::read(&rrd);
+    // Four runs of 31 frames, each starting where the previous one ended.
+    assert_eq!(rec.temporal_rows("rope/segments"), 4 * 31);
+    assert_eq!(
+        rec.sim_times("parameters"),
+        [0.0, 0.5, 1.0, 1.5],
+        "each run's parameters at its start"
+    );
+    let times = rec.sim_times("rope/segments");
+    assert!((times.last().unwrap() - 2.0).abs() < 1e-9);
+}
+
+#[test]
+fn service_flags_that_cannot_work_exit_2_naming_the_flag() {
+    let taken = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let port = taken.local_addr().unwrap().port();
+    let cases: [(&[&str], &str, i32); 7] = [
+        (&["--duration", "inf", "--loop"], "loop", 2),
+        (&["--duration", "inf", "--angle", "30,60"], "loop", 2),
+        (&["--duration", "1", "--loop", "0"], "loop", 2),
+        (&["--serve-grpc", "localhost:x"], "serve-grpc", 2),
+        (&["--serve-grpc", "--server-memory-limit", "0"], "memory", 2),
+        (&["--connect", "http://nowhere"], "connect", 2),
+        // An address already taken is not a typo, but still named, with what would work.
+        (
+            &["--serve-grpc", &format!("127.0.0.1:{port}")],
+            "serve-grpc",
+            1,
+        ),
+    ];
+    for (args, named, code) in cases {
+        let mut full = vec!["run"];
+        full.extend_from_slice(args);
+        let out = rope(&full);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(code), "{args:?}: {stderr}");
+        assert!(stderr.contains(named), "{args:?}: {stderr}");
+    }
+}
