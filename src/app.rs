@@ -184,6 +184,9 @@ pub fn run(
                 batch.clear();
             }
             logger
+                .send_series()
+                .context("writing frames to the recording")?;
+            logger
                 .recording()
                 .flush_with_timeout(FLUSH_TIMEOUT)
                 .context("flushing the recording")?;
