@@ -6,7 +6,7 @@
 //! silently wins over `--spawn`), binds its server to 0.0.0.0, and has no way to learn that
 //! a viewer has gone.
 
-use crate::viewer_link::{ViewerLink, ViewerSink};
+use crate::viewer_link::{ServedSink, ViewerLink, ViewerSink};
 use rerun::RecordingStream;
 use rerun::blueprint::Blueprint;
 use rerun::sink::LogSink;
@@ -147,7 +147,7 @@ impl OutputArgs {
             sinks.push(Box::new(sink));
         }
         if let Some(addr) = self.serve_grpc {
-            sinks.push(Box::new(self.serve(addr)?));
+            sinks.push(Box::new(ServedSink::new(self.serve(addr)?)));
             serving = Some(format!("rerun+http://{addr}/proxy"));
         }
         let survives_viewer_loss = self.save.is_some() || serving.is_some();

@@ -1,4 +1,5 @@
-//! A gRPC link to a viewer that can never stall the run or its exit.
+//! Links to viewers that can never stall a run or its exit: [`ViewerSink`] to a viewer this
+//! process connects to, [`ServedSink`] for the endpoint viewers connect to.
 //!
 //! Rerun's [`GrpcSink`] blocks the caller while a viewer cannot take data (its queue holds
 //! 100 messages), retries a connection forever, and waits without a bound for a viewer to
@@ -304,6 +305,69 @@ impl Drop for ViewerSink {
         self.commands = None;
         if self.link.lost().is_none() {
             self.finished.recv_timeout(FLUSH_CAP + POLL * 2).ok();
+        }
+    }
+}
+
+/// How long the end of a run, or of the process, waits for a served endpoint's viewers.
+pub const SERVE_FLUSH_CAP: Duration = Duration::from_millis(500);
+
+/// Rerun's gRPC server as a [`LogSink`] whose flush and shutdown are bounded.
+///
+/// A viewer that stops reading (frozen, or a laptop asleep) holds back Rerun's server until
+/// its keepalive gives up on it (10 s pings, 20 s timeout), and Rerun's shutdown would wait
+/// for it without a bound. The data is in the server's history either way, and a served
+/// process that exits takes its viewers' connections with it; so a flush waits at most
+/// [`SERVE_FLUSH_CAP`] and never fails for a slow viewer, and shutdown leaves after that.
+pub struct ServedSink {
+    server: Option<rerun::grpc_server::GrpcServerSink>,
+}
+
+impl ServedSink {
+    /// Wraps a started server.
+    pub fn new(server: rerun::grpc_server::GrpcServerSink) -> Self {
+        Self {
+            server: Some(server),
+        }
+    }
+}
+
+impl LogSink for ServedSink {
+    fn send(&self, msg: LogMsg) {
+        if let Some(server) = &self.server {
+            server.send(msg);
+        }
+    }
+
+    fn flush_blocking(&self, timeout: Duration) -> Result<(), SinkFlushError> {
+        match &self.server {
+            Some(server) => match server.flush_blocking(timeout.min(SERVE_FLUSH_CAP)) {
+                Err(SinkFlushError::Timeout) => Ok(()), // a viewer is behind: not our loss
+                other => other,
+            },
+            None => Ok(()),
+        }
+    }
+
+    fn default_batcher_config(&self) -> ChunkBatcherConfig {
+        ChunkBatcherConfig::LOW_LATENCY
+    }
+}
+
+impl Drop for ServedSink {
+    fn drop(&mut self) {
+        let Some(server) = self.server.take() else {
+            return;
+        };
+        let (done, finished) = crossbeam_channel::bounded(1);
+        let closing = std::thread::Builder::new()
+            .name("rope_served_close".to_owned())
+            .spawn(move || {
+                drop(server);
+                done.send(()).ok();
+            });
+        if closing.is_ok() {
+            finished.recv_timeout(SERVE_FLUSH_CAP).ok();
         }
     }
 }
