@@ -90,7 +90,7 @@ fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
         .context("opening the Rerun recording")?;
     if let Some(url) = &output.serving {
         eprintln!(
-            "rope: serving at {url}: any number of viewers can join, at any time, with `rerun --connect {url}`; they get the history up to {}",
+            "rope: serving at {url}: any number of viewers can join, at any time, with `rerun --connect {url}`, and get the history first; memory is kept within {} by dropping the oldest",
             args.output.server_memory_limit
         );
     }

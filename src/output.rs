@@ -20,7 +20,7 @@ pub const DEFAULT_PORT: u16 = 9876;
 pub const DEFAULT_SERVER_MEMORY_LIMIT: &str = "512MB";
 
 /// Rerun's server counts its history in encoded message bytes; the process holds 1.35 to 1.5
-/// times that (measured with `scripts/soak.sh`: 39.5 MB resident for a 20 MB history, 699 MB
+/// times that (measured with `scripts/soak.sh`: 39.5 MB resident for a 20 MB history, about 700 MB
 /// for 512 MB). The server is given what keeps the whole process within the user's limit.
 const HISTORY_OVERHEAD: f64 = 1.5;
 
