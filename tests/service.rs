@@ -120,9 +120,9 @@ impl LateViewer {
 }
 
 #[test]
-fn a_viewer_that_joins_after_the_run_gets_every_frame_and_sigterm_ends_the_serving() {
+fn served_and_saved_a_viewer_joining_after_the_run_gets_every_frame_and_sigterm_ends_it() {
     let dir = Scratch::new("serve-late");
-    let json = dir.path("s.json");
+    let (json, rrd) = (dir.path("s.json"), dir.path("s.rrd"));
     let port = free_port();
     let mut server = start(&[
         "run",
@@ -130,6 +130,8 @@ fn a_viewer_that_joins_after_the_run_gets_every_frame_and_sigterm_ends_the_servi
         "2",
         "--serve-grpc",
         &format!("127.0.0.1:{port}"),
+        "--save",
+        rrd.to_str().unwrap(),
         "--summary",
         json.to_str().unwrap(),
     ]);
@@ -176,6 +178,8 @@ fn a_viewer_that_joins_after_the_run_gets_every_frame_and_sigterm_ends_the_servi
         stderr.contains(&format!("serving at {}", url(port))),
         "{stderr}"
     );
+    // Served and saved at once: the file holds the same frames.
+    assert_eq!(Recording::read(&rrd).temporal_rows("rope/segments"), frames);
 }
 
 #[test]
