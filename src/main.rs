@@ -127,13 +127,21 @@ fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
     let Some(mut summary) = last else {
         anyhow::bail!("no run was made");
     };
-    if let Some(reason) = viewer_lost.get() {
-        summary.recording_error.get_or_insert_with(|| {
-            format!(
-                "{reason}; stopped at t = {:.3}",
-                summary.steps as f64 * summary.dt
-            )
-        });
+    // A viewer that was the only destination and is gone says more than a flush that failed
+    // for want of it.
+    let lost = viewer_lost.get().cloned().or_else(|| {
+        let link = output.viewer.as_ref()?;
+        if output.survives_viewer_loss {
+            None
+        } else {
+            link.lost()
+        }
+    });
+    if let Some(reason) = lost {
+        summary.recording_error = Some(format!(
+            "{reason} (the run reached t = {:.3})",
+            summary.steps as f64 * summary.dt
+        ));
     }
 
     if let Some(path) = &args.summary {

@@ -412,7 +412,10 @@ fn a_viewer_that_is_not_there_costs_the_recording_not_the_summary() {
         started.elapsed()
     );
     assert_eq!(out.status.code(), Some(1), "{stderr}");
-    assert!(stderr.contains("the recording is incomplete"), "{stderr}");
+    assert!(
+        stderr.contains("the recording is incomplete: no viewer answered at"),
+        "{stderr}"
+    );
     let s = summary(&json);
     assert_eq!(s["status"], "ok");
     assert_eq!(s["frames_logged"], 31);
