@@ -30,7 +30,7 @@ fn logging_overhead(c: &mut Criterion) {
     let mut group = c.benchmark_group("report_run_1_time_unit");
     group.sample_size(20);
     group.bench_function("logging_off", |b| {
-        b.iter(|| app::run(&config, None, &stop).expect("runs"))
+        b.iter(|| app::run(&config, None, &stop, &|_| {}).expect("runs"))
     });
     group.bench_function("saved_to_rrd", |b| {
         b.iter(|| {
@@ -38,7 +38,7 @@ fn logging_overhead(c: &mut Criterion) {
                 .save(&path)
                 .expect("a writable temp file");
             let mut logger = rope::logger::RopeLogger::new(rec).expect("styling logged");
-            app::run(&config, Some(&mut logger), &stop).expect("runs")
+            app::run(&config, Some(&mut logger), &stop, &|_| {}).expect("runs")
         })
     });
     group.finish();

@@ -127,11 +127,13 @@ impl RunConfig {
 /// Runs `config`, streaming frames through `logger` when given (logging off otherwise), until
 /// the final time, divergence, or `stop`. Returns the summary; the recording is flushed, or
 /// the summary's `recording_error` says why it could not be. The run is placed on the
-/// logger's timelines after the runs it logged before.
+/// logger's timelines after the runs it logged before. `progress` hears the simulated time
+/// of each frame, from the simulation thread.
 pub fn run(
     config: &RunConfig,
     mut logger: Option<&mut RopeLogger>,
     stop: &AtomicBool,
+    progress: &(dyn Fn(f64) + Sync),
 ) -> anyhow::Result<Summary> {
     let mut method = config
         .method
@@ -201,6 +203,7 @@ pub fn run(
                     samples.pop_front();
                 }
                 samples.push_back([frame.time, tip.x, tip.y]);
+                progress(frame.time);
                 let wait_started = Instant::now();
                 if let Some(speed) = config.realtime {
                     pace(started, frame.time / speed, stop);
