@@ -12,7 +12,6 @@ use crate::output::OutputError;
 use crossbeam_channel::{Receiver, RecvTimeoutError, SendTimeoutError, Sender};
 use rerun::log::{ChunkBatcherConfig, LogMsg};
 use rerun::sink::{GrpcSink, GrpcSinkConnectionState, LogSink, SinkFlushError};
-use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, PoisonError};
 use std::time::{Duration, Instant};
 
@@ -49,7 +48,6 @@ pub struct ViewerLink {
 struct Shared {
     url: String,
     state: Mutex<State>,
-    dropped: AtomicU64,
 }
 
 impl ViewerLink {
@@ -60,7 +58,6 @@ impl ViewerLink {
                 state: Mutex::new(State::Connecting {
                     since: Instant::now(),
                 }),
-                dropped: AtomicU64::new(0),
             }),
         }
     }
@@ -92,11 +89,6 @@ impl ViewerLink {
     /// Whether the viewer has accepted the connection (and is not lost since).
     pub fn connected(&self) -> bool {
         *self.state() == State::Connected
-    }
-
-    /// Messages dropped because the viewer was gone.
-    pub fn dropped(&self) -> u64 {
-        self.shared.dropped.load(Ordering::Relaxed)
     }
 
     fn state(&self) -> std::sync::MutexGuard<'_, State> {
@@ -133,10 +125,6 @@ impl ViewerLink {
                 self.lose(format!("the viewer at {} went away: {err}", self.url()));
             }
         }
-    }
-
-    fn drop_message(&self) {
-        self.shared.dropped.fetch_add(1, Ordering::Relaxed);
     }
 }
 
@@ -196,9 +184,7 @@ fn forward(sink: GrpcSink, queue: &Receiver<Command>, link: &ViewerLink) {
         link.observe(sink.status());
         match command {
             Ok(Command::Message(msg)) => {
-                if link.lost().is_some() {
-                    link.drop_message();
-                } else {
+                if link.lost().is_none() {
                     sink.send(msg);
                 }
             }
@@ -229,8 +215,7 @@ impl LogSink for ViewerSink {
             return;
         };
         if self.link.lost().is_some() {
-            self.link.drop_message();
-            return;
+            return; // dropped: the viewer is gone
         }
         // A viewer still coming up gets what is left of its grace; a connected one, STALL.
         let patience = match *self.link.state() {
@@ -240,7 +225,6 @@ impl LogSink for ViewerSink {
         match commands.send_timeout(Command::Message(msg), patience) {
             Ok(()) => {}
             Err(SendTimeoutError::Timeout(_)) => {
-                self.link.drop_message();
                 let reason = if self.link.connected() {
                     format!(
                         "the viewer at {} took no data for {} s",
@@ -256,7 +240,7 @@ impl LogSink for ViewerSink {
                 };
                 self.link.lose(reason);
             }
-            Err(SendTimeoutError::Disconnected(_)) => self.link.drop_message(),
+            Err(SendTimeoutError::Disconnected(_)) => {}
         }
     }
 
