@@ -14,8 +14,8 @@
 //!   where it goes (a spawned or connected viewer, a gRPC endpoint viewers join at any time,
 //!   an `.rrd` file, stdout, or several at once) and [`viewer_link`] keeps a viewer that went
 //!   away from ever stalling a run; [`app`] wires the simulation and the logger threads
-//!   together for `rope run`, and [`study`] runs grids of simulations and charts speed
-//!   against accuracy for `rope study`.
+//!   together for `rope run`, [`progress`] shows how far it has got, and [`study`] runs
+//!   grids of simulations and charts speed against accuracy for `rope study`.
 //!
 //! Units are dimensionless: length L = 1, gravity g = 1, mass per length 1, time in sqrt(L/g).
 //! Coordinates: x horizontal away from the support, **y pointing down**; φ is the angle of the
@@ -32,6 +32,7 @@ pub mod geometry;
 pub mod logger;
 pub mod method;
 pub mod output;
+pub mod progress;
 pub mod scene;
 pub mod seed;
 pub mod simulate;

@@ -112,7 +112,7 @@ fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
     'passes: while args.passes().is_none_or(|passes| pass < passes) {
         pass += 1;
         for (config, _) in &runs {
-            let progress = Progress::new(config.duration);
+            let progress = rope::progress::Progress::new(config.duration);
             let summary = rope::app::run(config, Some(&mut logger), &stop, &|t| progress.at(t))?;
             progress.finish();
             let ended = summary.status != Status::Ok || summary.recording_error.is_some();
@@ -170,70 +170,6 @@ fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
         Status::Diverged => ExitCode::from(EXIT_DIVERGED),
         Status::Interrupted => ExitCode::from(EXIT_INTERRUPTED),
     })
-}
-
-/// Shows how far a run has got: a bar (a spinner for an endless run) on a terminal; off a
-/// terminal (logs, services), a line every [`PROGRESS_LINE_EVERY`] of wall time.
-struct Progress {
-    bar: indicatif::ProgressBar,
-    plain: bool,
-    duration: f64,
-    last_line: std::sync::Mutex<std::time::Instant>,
-}
-
-/// How often a run off a terminal says how far it has got.
-const PROGRESS_LINE_EVERY: Duration = Duration::from_secs(30);
-
-impl Progress {
-    fn new(duration: f64) -> Self {
-        let plain = !std::io::IsTerminal::is_terminal(&std::io::stderr());
-        let bar = if plain {
-            indicatif::ProgressBar::hidden()
-        } else if duration.is_finite() {
-            indicatif::ProgressBar::new((duration * 1000.0).round() as u64).with_style(
-                indicatif::ProgressStyle::with_template(
-                    "{bar:40} t = {msg}, {elapsed} elapsed, ~{eta} left",
-                )
-                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-            )
-        } else {
-            let spinner = indicatif::ProgressBar::new_spinner().with_style(
-                indicatif::ProgressStyle::with_template(
-                    "{spinner} t = {msg}, {elapsed} elapsed; Ctrl-C to stop",
-                )
-                .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
-            );
-            spinner.enable_steady_tick(Duration::from_millis(200));
-            spinner
-        };
-        Self {
-            bar,
-            plain,
-            duration,
-            last_line: std::sync::Mutex::new(std::time::Instant::now()),
-        }
-    }
-
-    fn at(&self, time: f64) {
-        if self.plain {
-            let mut last = self
-                .last_line
-                .lock()
-                .unwrap_or_else(std::sync::PoisonError::into_inner);
-            if last.elapsed() >= PROGRESS_LINE_EVERY {
-                *last = std::time::Instant::now();
-                eprintln!("rope: t = {time:.1} of {}", self.duration);
-            }
-        } else {
-            self.bar.set_position((time * 1000.0).round() as u64);
-            self.bar
-                .set_message(format!("{time:.2} of {}", self.duration));
-        }
-    }
-
-    fn finish(&self) {
-        self.bar.finish_and_clear();
-    }
 }
 
 /// Watches the viewer from a thread of its own. When it is gone: if a file or a served
