@@ -14,7 +14,7 @@ pub struct Progress {
 }
 
 /// How often a run off a terminal says how far it has got.
-const PROGRESS_LINE_EVERY: Duration = Duration::from_secs(30);
+pub const PROGRESS_LINE_EVERY: Duration = Duration::from_secs(30);
 
 impl Progress {
     /// Progress for a run to `duration` (which may be infinite).
