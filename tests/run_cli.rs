@@ -376,11 +376,12 @@ fn study_saves_its_chart_data_into_a_recording_and_reports_progress() {
 
 #[test]
 fn study_rejects_bad_grids_with_exit_2() {
-    let cases: [(&[&str], &str); 4] = [
+    let cases: [(&[&str], &str); 5] = [
         (&["--dts", "0"][..], "dts"),
         (&["--segments", "1"][..], "segments"),
         (&["--duration", "0"][..], "duration"),
         (&["--reference-segments", "41"][..], "reference-segments"),
+        (&["--angle", "30,60"][..], "angle"),
     ];
     assert_each_exits_2_naming(&["study", "--out", "/nonexistent/never"], &cases);
 }
