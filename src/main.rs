@@ -6,8 +6,8 @@ use clap::Parser as _;
 use rope::cli::{Cli, Command, RunArgs, StudyArgs};
 use rope::summary::Status;
 use std::process::ExitCode;
+use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, OnceLock};
 use std::time::Duration;
 
 /// Exit codes: 2 is bad input (as clap's own errors), 3 a diverged run, 130 an interrupted one,
@@ -69,7 +69,8 @@ fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
         ),
         (None, Some(_)) => {}
     }
-    if args.method.is_none() && args.tolerance.is_none() && args.duration.is_infinite() {
+    // (--tolerance with an endless run was refused above.)
+    if args.method.is_none() && args.duration.is_infinite() {
         eprintln!(
             "rope: an endless run uses the chain method: the seed scheme diverges after some tens of time units at any time step (--method seed to watch it)"
         );
@@ -94,14 +95,8 @@ fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
             args.output.server_memory_limit
         );
     }
-    let viewer_lost = Arc::new(OnceLock::new());
     if let Some(link) = output.viewer.clone() {
-        watch_viewer(
-            link,
-            output.survives_viewer_loss,
-            Arc::clone(&viewer_lost),
-            Arc::clone(&stop),
-        );
+        watch_viewer(link, output.survives_viewer_loss, Arc::clone(&stop));
     }
     let mut logger =
         rope::logger::RopeLogger::new(output.rec).context("logging the recording's styling")?;
@@ -129,16 +124,12 @@ fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
     let Some(mut summary) = last else {
         anyhow::bail!("no run was made");
     };
-    // A viewer that was the only destination and is gone says more than a flush that failed
-    // for want of it.
-    let lost = viewer_lost.get().cloned().or_else(|| {
-        let link = output.viewer.as_ref()?;
-        if output.survives_viewer_loss {
-            None
-        } else {
-            link.lost()
-        }
-    });
+    // A viewer that was the only destination and is gone (a lost link stays lost) says more
+    // than a flush that failed for want of it.
+    let lost = match &output.viewer {
+        Some(link) if !output.survives_viewer_loss => link.lost(),
+        _ => None,
+    };
     if let Some(reason) = lost {
         summary.recording_error = Some(format!(
             "{reason} (the run reached t = {:.3})",
@@ -174,13 +165,8 @@ fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
 
 /// Watches the viewer from a thread of its own. When it is gone: if a file or a served
 /// endpoint keeps the recording, says so once and lets the run go on; otherwise stops the
-/// run, leaving the reason in `lost` for the summary.
-fn watch_viewer(
-    link: rope::viewer_link::ViewerLink,
-    survives: bool,
-    lost: Arc<OnceLock<String>>,
-    stop: Arc<AtomicBool>,
-) {
+/// run (the link keeps the reason, for the summary).
+fn watch_viewer(link: rope::viewer_link::ViewerLink, survives: bool, stop: Arc<AtomicBool>) {
     std::thread::spawn(move || {
         loop {
             std::thread::sleep(Duration::from_millis(100));
@@ -188,7 +174,6 @@ fn watch_viewer(
                 if survives {
                     eprintln!("rope: warning: {reason}; the run goes on without it");
                 } else {
-                    lost.set(reason).ok();
                     stop.store(true, Ordering::SeqCst);
                 }
                 return;
