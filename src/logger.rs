@@ -115,6 +115,17 @@ pub fn blueprint() -> Blueprint {
     .with_time_panel(rerun::blueprint::TimePanel::new().with_timeline(SIM_TIME))
 }
 
+/// The time columns of rows at `sim_time` seconds and `step` steps, both timelines.
+fn timelines(
+    sim_time: impl IntoIterator<Item = f64>,
+    step: impl IntoIterator<Item = i64>,
+) -> [rerun::TimeColumn; 2] {
+    [
+        rerun::TimeColumn::new_duration_secs(SIM_TIME, sim_time),
+        rerun::TimeColumn::new_sequence(STEP, step),
+    ]
+}
+
 /// Streams frames of runs into a recording. Runs follow one another on the timelines: each
 /// starts where the one before it ended (`--loop`), so one recording holds them all.
 pub struct RopeLogger {
@@ -189,10 +200,7 @@ impl RopeLogger {
         let ones = std::iter::once(1);
         self.rec.send_columns(
             path::PARAMETERS,
-            [
-                rerun::TimeColumn::new_duration_secs(SIM_TIME, [self.time_offset]),
-                rerun::TimeColumn::new_sequence(STEP, [self.step_offset as i64]),
-            ],
+            timelines([self.time_offset], [self.step_offset as i64]),
             rerun::TextDocument::update_fields()
                 .with_text(parameters_markdown)
                 .with_media_type(rerun::MediaType::markdown())
@@ -200,8 +208,8 @@ impl RopeLogger {
         )
     }
 
-    /// Ends a run that reached `time` after `steps`: the next one starts there. The run's
-    /// time series must have been sent ([`Self::send_series`]).
+    /// Ends a run that reached `time` after `steps`: the next one starts there. (Time series
+    /// still gathered keep their own times.)
     pub fn end_run(&mut self, time: f64, steps: u64) {
         self.time_offset += time;
         self.step_offset += steps;
@@ -262,16 +270,10 @@ impl RopeLogger {
         let rec = &self.rec;
         let (time_offset, step_offset) = (self.time_offset, self.step_offset);
         let times = || {
-            [
-                rerun::TimeColumn::new_duration_secs(
-                    SIM_TIME,
-                    frames.iter().map(|f| time_offset + f.time),
-                ),
-                rerun::TimeColumn::new_sequence(
-                    STEP,
-                    frames.iter().map(|f| (step_offset + f.step) as i64),
-                ),
-            ]
+            timelines(
+                frames.iter().map(|f| time_offset + f.time),
+                frames.iter().map(|f| (step_offset + f.step) as i64),
+            )
         };
         let point = |p: &crate::geometry::Point| [p.x as f32, p.y as f32];
         let ones = || std::iter::repeat_n(1, frames.len());
@@ -367,10 +369,7 @@ impl RopeLogger {
         for (i, (entity, ..)) in SERIES.iter().enumerate() {
             self.rec.send_columns(
                 *entity,
-                [
-                    rerun::TimeColumn::new_duration_secs(SIM_TIME, rows.iter().map(|r| r.0)),
-                    rerun::TimeColumn::new_sequence(STEP, rows.iter().map(|r| r.1)),
-                ],
+                timelines(rows.iter().map(|r| r.0), rows.iter().map(|r| r.1)),
                 rerun::Scalars::new(rows.iter().map(|r| r.2[i]))
                     .columns(std::iter::repeat_n(1, rows.len()))?,
             )?;
