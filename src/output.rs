@@ -53,7 +53,7 @@ pub struct OutputArgs {
     /// Memory the --serve-grpc process may use, its history for late viewers included, e.g.
     /// 512MB, 2GB or 10% (of the machine's memory); beyond it the oldest data is dropped.
     #[arg(long, value_name = "SIZE", default_value = DEFAULT_SERVER_MEMORY_LIMIT, value_parser = parse_memory_limit, requires = "serve_grpc")]
-    pub server_memory_limit: String,
+    pub server_memory_limit: ServerMemoryLimit,
 
     /// Write the recording to FILE.rrd (as well as to a viewer, if one is named).
     #[arg(long, value_name = "FILE.rrd")]
@@ -175,7 +175,7 @@ impl OutputArgs {
     fn serve(&self, addr: SocketAddr) -> Result<rerun::grpc_server::GrpcServerSink, OutputError> {
         std::net::TcpListener::bind(addr)
             .map_err(|source| OutputError::ServeAddress { addr, source })?;
-        let memory_limit = history_limit(&self.server_memory_limit);
+        let memory_limit = history_limit(self.server_memory_limit.limit);
         let ip = match addr.ip() {
             IpAddr::V4(ip) => ip.to_string(),
             IpAddr::V6(ip) => format!("[{ip}]"),
@@ -197,16 +197,12 @@ impl OutputArgs {
 }
 
 /// The history limit to give Rerun's server so that the process stays within `process_limit`.
-fn history_limit(process_limit: &str) -> rerun::MemoryLimit {
-    match rerun::MemoryLimit::parse(process_limit) {
-        Ok(limit) if limit.is_limited() => {
-            let room = limit.as_bytes().saturating_sub(PROCESS_BASELINE);
-            rerun::MemoryLimit::from_bytes((room as f64 / HISTORY_OVERHEAD) as u64)
-        }
-        Ok(unlimited) => unlimited,
-        // Checked when the flags were parsed; the default is the fallback.
-        Err(_) => history_limit(DEFAULT_SERVER_MEMORY_LIMIT),
+fn history_limit(process_limit: rerun::MemoryLimit) -> rerun::MemoryLimit {
+    if process_limit.is_unlimited() {
+        return process_limit;
     }
+    let room = process_limit.as_bytes().saturating_sub(PROCESS_BASELINE);
+    rerun::MemoryLimit::from_bytes((room as f64 / HISTORY_OVERHEAD) as u64)
 }
 
 /// Starts a viewer (or finds one already listening on the default port) and returns its URL.
@@ -252,10 +248,26 @@ pub fn parse_serve_addr(text: &str) -> Result<SocketAddr, String> {
     ))
 }
 
+/// `--server-memory-limit SIZE`: the limit, and the words the user gave it in.
+#[derive(Clone, Debug)]
+pub struct ServerMemoryLimit {
+    text: String,
+    limit: rerun::MemoryLimit,
+}
+
+impl std::fmt::Display for ServerMemoryLimit {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.text)
+    }
+}
+
 /// `--server-memory-limit SIZE`.
-fn parse_memory_limit(text: &str) -> Result<String, String> {
+fn parse_memory_limit(text: &str) -> Result<ServerMemoryLimit, String> {
     match rerun::MemoryLimit::parse(text) {
-        Ok(limit) if limit.as_bytes() >= MIN_SERVER_MEMORY => Ok(text.to_owned()),
+        Ok(limit) if limit.as_bytes() >= MIN_SERVER_MEMORY => Ok(ServerMemoryLimit {
+            text: text.to_owned(),
+            limit,
+        }),
         Ok(_) => Err(format!(
             "{text}: the process needs about {} MB besides the served history; give at least 64MB",
             PROCESS_BASELINE / 1_000_000
@@ -291,9 +303,9 @@ mod tests {
 
     #[test]
     fn the_history_gets_what_leaves_the_process_within_its_limit() {
-        let history = history_limit("512MB").as_bytes();
-        assert_eq!(history, 320_000_000);
-        assert!(history_limit("unlimited").is_unlimited());
+        let limit = |text| parse_memory_limit(text).unwrap().limit;
+        assert_eq!(history_limit(limit("512MB")).as_bytes(), 320_000_000);
+        assert!(history_limit(limit("unlimited")).is_unlimited());
     }
 
     #[test]
