@@ -3,8 +3,8 @@
 
 mod common;
 
-use common::cli::{ROPE, Recording, Scratch, rope, summary};
-use std::process::{Command, Stdio};
+use common::cli::{ROPE, Recording, Scratch, rope, signal_and_wait, start, summary};
+use std::process::Command;
 use std::time::{Duration, Instant};
 
 #[test]
@@ -190,43 +190,19 @@ fn diverging_run_exits_non_zero_says_when_and_keeps_its_frames() {
 fn interrupt_mid_run(signal: &str) {
     let dir = Scratch::new(&format!("signal-{signal}"));
     let (rrd, json) = (dir.path("i.rrd"), dir.path("i.json"));
-    let mut child = Command::new(ROPE)
-        .args([
-            "run",
-            "--realtime",
-            "--duration",
-            "60",
-            "--save",
-            rrd.to_str().unwrap(),
-            "--summary",
-            json.to_str().unwrap(),
-        ])
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
+    let mut child = start(&[
+        "run",
+        "--realtime",
+        "--duration",
+        "60",
+        "--save",
+        rrd.to_str().unwrap(),
+        "--summary",
+        json.to_str().unwrap(),
+    ]);
     std::thread::sleep(Duration::from_millis(1500));
-    let sent = Instant::now();
-    let kill = Command::new("kill")
-        .args([signal, &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(kill.success());
-    let status = loop {
-        if let Some(status) = child.try_wait().unwrap() {
-            break status;
-        }
-        assert!(
-            sent.elapsed() < Duration::from_secs(5),
-            "still running 5 s after {signal}"
-        );
-        std::thread::sleep(Duration::from_millis(20));
-    };
-    assert!(
-        sent.elapsed() < Duration::from_secs(2),
-        "took {:?} to stop",
-        sent.elapsed()
-    );
+    let (status, took) = signal_and_wait(&mut child, signal, Duration::from_secs(5));
+    assert!(took < Duration::from_secs(2), "took {took:?} to stop");
     assert_eq!(status.code(), Some(130));
     let s = summary(&json);
     assert_eq!(s["status"], "interrupted");

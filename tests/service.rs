@@ -5,10 +5,11 @@
 
 mod common;
 
-use common::cli::{ROPE, Recording, Scratch, rope, summary};
+use common::cli::{
+    Recording, Scratch, rope, signal, signal_and_wait, start, stderr_of, summary, wait_for,
+};
 use rerun::external::re_grpc_client;
-use std::io::Read as _;
-use std::process::{Child, Command, ExitStatus, Stdio};
+use std::process::Child;
 use std::time::{Duration, Instant};
 
 /// A port on 127.0.0.1 that nothing listens on (just now).
@@ -21,46 +22,6 @@ fn free_port() -> u16 {
 
 fn url(port: u16) -> String {
     format!("rerun+http://127.0.0.1:{port}/proxy")
-}
-
-/// Starts `rope` with `args`, stderr captured.
-fn start(args: &[&str]) -> Child {
-    Command::new(ROPE)
-        .args(args)
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the rope binary runs")
-}
-
-fn signal(child: &Child, signal: &str) {
-    let sent = Command::new("kill")
-        .args([signal, &child.id().to_string()])
-        .status()
-        .expect("kill runs");
-    assert!(sent.success());
-}
-
-/// Waits up to `limit` for `child` to exit; `None` if it is still running then.
-fn wait_for(child: &mut Child, limit: Duration) -> Option<ExitStatus> {
-    let started = Instant::now();
-    loop {
-        if let Some(status) = child.try_wait().expect("try_wait") {
-            return Some(status);
-        }
-        if started.elapsed() > limit {
-            return None;
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    }
-}
-
-fn stderr_of(child: &mut Child) -> String {
-    let mut text = String::new();
-    if let Some(mut err) = child.stderr.take() {
-        err.read_to_string(&mut text).ok();
-    }
-    text
 }
 
 /// Waits until something listens on `port`.
@@ -164,14 +125,8 @@ fn served_and_saved_a_viewer_joining_after_the_run_gets_every_frame_and_sigterm_
         wait_for(&mut server, Duration::ZERO).is_none(),
         "still serving"
     );
-    let sent = Instant::now();
-    signal(&server, "-TERM");
-    let status = wait_for(&mut server, Duration::from_secs(5)).expect("stopped");
-    assert!(
-        sent.elapsed() < Duration::from_secs(1),
-        "{:?}",
-        sent.elapsed()
-    );
+    let (status, took) = signal_and_wait(&mut server, "-TERM", Duration::from_secs(5));
+    assert!(took < Duration::from_secs(1), "{took:?}");
     let stderr = stderr_of(&mut server);
     assert_eq!(status.code(), Some(0), "{stderr}");
     assert!(
@@ -211,14 +166,8 @@ fn an_endless_served_run_streams_history_then_live_frames_to_a_late_viewer() {
     let expected = (times.last().unwrap() * 60.0).round() as usize + 1;
     assert_eq!(times.len(), expected);
 
-    let sent = Instant::now();
-    signal(&server, "-TERM");
-    let status = wait_for(&mut server, Duration::from_secs(5)).expect("stopped");
-    assert!(
-        sent.elapsed() < Duration::from_secs(1),
-        "{:?}",
-        sent.elapsed()
-    );
+    let (status, took) = signal_and_wait(&mut server, "-TERM", Duration::from_secs(5));
+    assert!(took < Duration::from_secs(1), "{took:?}");
     let stderr = stderr_of(&mut server);
     assert_eq!(status.code(), Some(130), "{stderr}");
     assert!(
@@ -307,14 +256,8 @@ fn a_killed_viewer_leaves_a_watch_and_save_run_going_and_its_file_complete() {
         "the run stopped with its viewer: {}",
         stderr_of(&mut run)
     );
-    let sent = Instant::now();
-    signal(&run, "-TERM");
-    let status = wait_for(&mut run, Duration::from_secs(10)).expect("stopped");
-    assert!(
-        sent.elapsed() < Duration::from_secs(1),
-        "{:?}",
-        sent.elapsed()
-    );
+    let (status, took) = signal_and_wait(&mut run, "-TERM", Duration::from_secs(10));
+    assert!(took < Duration::from_secs(1), "{took:?}");
     let stderr = stderr_of(&mut run);
     assert_eq!(status.code(), Some(130), "{stderr}");
     assert!(

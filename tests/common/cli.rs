@@ -6,8 +6,10 @@ use rerun::external::re_log_types::LogMsg;
 use rerun::log::Chunk;
 use serde_json::Value;
 use std::collections::BTreeMap;
+use std::io::Read as _;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::{Child, Command, ExitStatus, Output, Stdio};
+use std::time::{Duration, Instant};
 
 pub const ROPE: &str = env!("CARGO_BIN_EXE_rope");
 
@@ -108,4 +110,56 @@ impl Recording {
 
 pub fn summary(path: &Path) -> Value {
     serde_json::from_str(&std::fs::read_to_string(path).expect("summary written")).expect("JSON")
+}
+
+/// Starts `rope` with `args`, stderr captured.
+pub fn start(args: &[&str]) -> Child {
+    Command::new(ROPE)
+        .args(args)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the rope binary runs")
+}
+
+/// Sends `signal` (as `kill` takes it: -TERM, -KILL, …) to `child`.
+pub fn signal(child: &Child, signal: &str) {
+    let sent = Command::new("kill")
+        .args([signal, &child.id().to_string()])
+        .status()
+        .expect("kill runs");
+    assert!(sent.success());
+}
+
+/// Waits up to `limit` for `child` to exit; `None` if it is still running then.
+pub fn wait_for(child: &mut Child, limit: Duration) -> Option<ExitStatus> {
+    let started = Instant::now();
+    loop {
+        if let Some(status) = child.try_wait().expect("try_wait") {
+            return Some(status);
+        }
+        if started.elapsed() > limit {
+            return None;
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
+/// What `child` wrote to its (piped) stderr.
+pub fn stderr_of(child: &mut Child) -> String {
+    let mut text = String::new();
+    if let Some(mut err) = child.stderr.take() {
+        err.read_to_string(&mut text).ok();
+    }
+    text
+}
+
+/// Sends `signal` to `child` and waits for it to exit: its status, and how long that took.
+/// Fails the test if it is still running `limit` after.
+pub fn signal_and_wait(child: &mut Child, sig: &str, limit: Duration) -> (ExitStatus, Duration) {
+    let sent = Instant::now();
+    signal(child, sig);
+    let status =
+        wait_for(child, limit).unwrap_or_else(|| panic!("still running {limit:?} after {sig}"));
+    (status, sent.elapsed())
 }
