@@ -74,16 +74,21 @@ impl ViewerLink {
         if let State::Connecting { since } = *state
             && since.elapsed() > CONNECT_GRACE
         {
-            *state = State::Lost(format!(
-                "no viewer answered at {} within {} s",
-                self.shared.url,
-                CONNECT_GRACE.as_secs()
-            ));
+            *state = State::Lost(self.no_answer());
         }
         match &*state {
             State::Lost(reason) => Some(reason.clone()),
             _ => None,
         }
+    }
+
+    /// Why a viewer that never accepted the connection counts as gone.
+    fn no_answer(&self) -> String {
+        format!(
+            "no viewer answered at {} within {} s",
+            self.url(),
+            CONNECT_GRACE.as_secs()
+        )
     }
 
     /// Whether the viewer has accepted the connection (and is not lost since).
@@ -232,11 +237,7 @@ impl LogSink for ViewerSink {
                         STALL.as_secs()
                     )
                 } else {
-                    format!(
-                        "no viewer answered at {} within {} s",
-                        self.link.url(),
-                        CONNECT_GRACE.as_secs()
-                    )
+                    self.link.no_answer()
                 };
                 self.link.lose(reason);
             }
