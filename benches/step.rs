@@ -1,12 +1,12 @@
 //! Nanoseconds per segment-step of each method's step, against the bare tridiagonal solve of
 //! the same size (the floor the seed scheme's step is measured against).
 //!
-//! `cargo bench --bench step`; the README's table comes from it.
+//! `cargo bench --bench step`; the table in `docs/measurements.md` comes from it.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use rope::method::MethodKind;
-use rope::scene::Scene;
-use rope::tridiagonal::{self, Workspace};
+use rope::methods::MethodKind;
+use rope::methods::tridiagonal::{self, Workspace};
+use rope::model::Scene;
 use std::hint::black_box;
 
 const SIZES: [usize; 3] = [100, 1_000, 10_000];

@@ -1,11 +1,13 @@
-//! The command line: `rope run` and its flags.
+//! The command line: `rope run` and `rope study`, their flags, and how the flags become a
+//! validated run or study.
 
-use crate::app::RunConfig;
 use crate::error::ConfigError;
-use crate::method::MethodKind;
-use crate::output::OutputArgs;
-use crate::scene::Scene;
-use crate::study::model::{self, Choice};
+use crate::methods::MethodKind;
+use crate::methods::tolerance::{self, Choice};
+use crate::model::Scene;
+use crate::recording::destinations::OutputArgs;
+use crate::run::{RunConfig, RunPlan};
+use crate::study::Spec;
 use std::path::PathBuf;
 
 /// Simulate an inextensible string swinging under gravity and stream it to the Rerun viewer.
@@ -68,18 +70,20 @@ impl SceneArgs {
         }
     }
 
-    /// The one scene a study is about.
-    pub fn scene(&self) -> Result<Scene, String> {
+    /// The one scene a study is about, validated.
+    pub fn scene(&self) -> Result<Scene, ConfigError> {
         match self.scenes().as_slice() {
-            [scene] => Ok(*scene),
-            scenes => Err(format!(
-                "{}: a study is of one scene, {} given; run one study per scene",
-                match self.scene {
+            [scene] => {
+                scene.validate()?;
+                Ok(*scene)
+            }
+            scenes => Err(ConfigError::StudyScenes {
+                flag: match self.scene {
                     SceneKind::Release => "angle",
                     SceneKind::Mode => "mode-number",
                 },
-                scenes.len()
-            )),
+                count: scenes.len(),
+            }),
         }
     }
 }
@@ -119,6 +123,13 @@ pub struct StudyArgs {
     pub save: Option<PathBuf>,
 }
 
+/// A validated study: the grid and the reference's finest N.
+#[derive(Clone, Debug)]
+pub struct StudyPlan {
+    pub spec: Spec,
+    pub reference_segments: usize,
+}
+
 impl StudyArgs {
     /// The time steps to run.
     pub fn dts(&self) -> Vec<f64> {
@@ -126,6 +137,41 @@ impl StudyArgs {
             (0..10)
                 .map(|i| if i % 2 == 0 { 1.0 } else { 3.0 } * 10f64.powi(-6 + i / 2))
                 .collect()
+        })
+    }
+
+    /// Checks every flag, naming the one that is wrong and what would work.
+    pub fn plan(&self) -> Result<StudyPlan, ConfigError> {
+        let scene = self.scene.scene()?;
+        if !(self.duration.is_finite() && self.duration > 0.0) {
+            return Err(ConfigError::StudyDuration(self.duration));
+        }
+        let dts = self.dts();
+        if let Some(&dt) = dts.iter().find(|dt| !(dt.is_finite() && **dt > 0.0)) {
+            return Err(ConfigError::StudyTimeStep(dt));
+        }
+        let min = MethodKind::ALL
+            .iter()
+            .map(|m| m.descriptor().min_segments)
+            .min()
+            .unwrap_or(1);
+        if let Some(&segments) = self.segments.iter().find(|n| **n < min) {
+            return Err(ConfigError::StudySegments { segments, min });
+        }
+        let finest = self.segments.iter().copied().max().unwrap_or(100);
+        let reference_segments = self.reference_segments.unwrap_or(2 * finest);
+        if reference_segments < 4 || !reference_segments.is_multiple_of(2) {
+            return Err(ConfigError::ReferenceSegments(reference_segments));
+        }
+        Ok(StudyPlan {
+            spec: Spec {
+                scene,
+                duration: self.duration,
+                methods: self.methods.clone(),
+                segments: self.segments.clone(),
+                dts,
+            },
+            reference_segments,
         })
     }
 }
@@ -162,9 +208,8 @@ pub struct RunArgs {
     /// Run the scenes (see --angle) again and again, PASSES times over the list [default:
     /// until Ctrl-C]. Each run starts where the previous one ended on the timelines, with its
     /// parameters logged there.
-    #[arg(long = "loop", value_name = "PASSES", num_args = 0..=1)]
-    #[allow(clippy::option_option)]
-    pub repeat: Option<Option<u64>>,
+    #[arg(long = "loop", value_name = "PASSES", num_args = 0..=1, default_missing_value = "forever", value_parser = parse_passes)]
+    pub repeat: Option<Passes>,
 
     /// Choose method, segments and time step for a tip-position error of at most EPS (string
     /// lengths) at the final time, from the error model fitted to `rope study`; prints the
@@ -172,8 +217,8 @@ pub struct RunArgs {
     #[arg(long, value_name = "EPS", allow_negative_numbers = true, conflicts_with_all = ["method", "segments", "dt"])]
     pub tolerance: Option<f64>,
 
-    /// Numerical method [default: seed; chain for --duration inf, as the seed scheme
-    /// diverges after some tens of time units whatever its time step].
+    /// Numerical method [default: the report's (seed); for --duration inf, one that stays
+    /// stable for ever (chain), as printed at the start].
     #[arg(long, value_enum)]
     pub method: Option<MethodKind>,
 
@@ -198,84 +243,113 @@ pub struct RunArgs {
     pub output: OutputArgs,
 }
 
+/// How many times `--loop` goes through the list of scenes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Passes {
+    /// Until Ctrl-C (`--loop` alone).
+    Forever,
+    /// This many times (`--loop N`).
+    Times(u64),
+}
+
+/// `--loop [PASSES]`: a number of passes, or nothing for until Ctrl-C.
+fn parse_passes(text: &str) -> Result<Passes, String> {
+    match text {
+        "forever" => Ok(Passes::Forever),
+        _ => text.parse().map(Passes::Times).map_err(|_| {
+            format!("{text:?} is not a number of passes; give a whole number ≥ 1, or --loop alone to repeat until Ctrl-C")
+        }),
+    }
+}
+
+/// One run to make, and what `--tolerance` chose for it, if it chose.
+#[derive(Clone, Debug)]
+pub struct Planned {
+    pub plan: RunPlan,
+    pub choice: Option<Choice>,
+}
+
 impl RunArgs {
-    /// Validates the flags into the runs to make, in order; with `--tolerance`, each also
-    /// says what the rule chose for it.
-    pub fn configs(&self) -> Result<Vec<(RunConfig, Option<Choice>)>, ConfigError> {
+    /// Validates the flags into the runs to make, in order.
+    pub fn plans(&self) -> Result<Vec<Planned>, ConfigError> {
         let scenes = self.scene.scenes();
         if self.duration.is_infinite() && (self.repeat.is_some() || scenes.len() > 1) {
             return Err(ConfigError::Loop(
                 "an endless run (--duration inf) never ends, so no other run can follow it; give a finite --duration to --loop or to a list of scenes".to_owned(),
             ));
         }
-        if self.repeat == Some(Some(0)) {
+        if self.repeat == Some(Passes::Times(0)) {
             return Err(ConfigError::Loop(
                 "0 passes: give at least 1, or --loop alone to repeat until Ctrl-C".to_owned(),
             ));
         }
-        scenes.into_iter().map(|scene| self.config(scene)).collect()
+        scenes.into_iter().map(|scene| self.plan(scene)).collect()
     }
 
-    /// The method asked for, or the default for the duration: an endless run needs one that
-    /// stays stable for ever.
+    /// The method asked for, or the default for the duration.
     pub fn method(&self) -> MethodKind {
-        match self.method {
-            Some(method) => method,
-            None if self.duration.is_infinite() => MethodKind::Chain,
-            None => MethodKind::Seed,
-        }
+        self.method
+            .unwrap_or_else(|| MethodKind::default_for(self.duration))
     }
 
     /// How many times to go through the list of scenes; `None` for until Ctrl-C.
     pub fn passes(&self) -> Option<u64> {
         match self.repeat {
             None => Some(1),
-            Some(passes) => passes,
+            Some(Passes::Times(n)) => Some(n),
+            Some(Passes::Forever) => None,
         }
     }
 
     /// Validates the flags for one scene; with `--tolerance`, also says what the rule chose.
-    fn config(&self, scene: Scene) -> Result<(RunConfig, Option<Choice>), ConfigError> {
-        let (method, segments, dt, choice) = match self.tolerance {
-            None => (self.method(), self.segments, self.dt, None),
+    fn plan(&self, scene: Scene) -> Result<Planned, ConfigError> {
+        let asked = RunConfig {
+            method: self.method(),
+            scene,
+            segments: self.segments,
+            dt: self.dt,
+            duration: self.duration,
+            log_rate: self.log_rate,
+            realtime: self.realtime,
+            allow_unstable: self.allow_unstable,
+        };
+        let (config, choice) = match self.tolerance {
+            None => (asked, None),
             Some(eps) => {
-                scene.validate()?;
-                if !(eps.is_finite() && eps > 0.0) {
-                    return Err(ConfigError::Tolerance(eps));
-                }
-                if self.duration.is_infinite() {
-                    return Err(ConfigError::ToleranceEndless(eps));
-                }
-                let choice = model::choose(eps, self.duration.max(0.0), &scene)
-                    .ok_or(ConfigError::Tolerance(eps))?;
-                if choice.predicted_seconds > MAX_TOLERANCE_SECONDS {
-                    return Err(ConfigError::ToleranceTooCostly {
-                        tolerance: eps,
-                        segments: choice.segments,
-                        seconds: choice.predicted_seconds,
-                    });
-                }
-                (
-                    choice.method,
-                    choice.segments,
-                    Some(choice.dt),
-                    Some(choice),
-                )
+                let choice = self.choose(eps, &scene)?;
+                let chosen = RunConfig {
+                    method: choice.method,
+                    segments: choice.segments,
+                    dt: Some(choice.dt),
+                    ..asked
+                };
+                (chosen, Some(choice))
             }
         };
-        let config = RunConfig::new(
-            method,
-            scene,
-            segments,
-            dt,
-            self.duration,
-            self.log_rate,
-            self.realtime,
-            self.allow_unstable,
-        )?;
-        Ok((config, choice))
+        Ok(Planned {
+            plan: config.validate()?,
+            choice,
+        })
+    }
+
+    /// What `--tolerance EPS` chooses for `scene`.
+    fn choose(&self, eps: f64, scene: &Scene) -> Result<Choice, ConfigError> {
+        scene.validate()?;
+        if !(eps.is_finite() && eps > 0.0) {
+            return Err(ConfigError::Tolerance(eps));
+        }
+        if self.duration.is_infinite() {
+            return Err(ConfigError::ToleranceEndless(eps));
+        }
+        let choice = tolerance::choose(eps, self.duration.max(0.0), scene)
+            .ok_or(ConfigError::Tolerance(eps))?;
+        if choice.predicted_seconds > tolerance::MAX_SECONDS {
+            return Err(ConfigError::ToleranceTooCostly {
+                tolerance: eps,
+                segments: choice.segments,
+                seconds: choice.predicted_seconds,
+            });
+        }
+        Ok(choice)
     }
 }
-
-/// The longest run `--tolerance` will choose (predicted CPU seconds).
-const MAX_TOLERANCE_SECONDS: f64 = 3600.0;

@@ -1,4 +1,5 @@
-//! Errors a user can cause (bad configuration) and the one a run can end with (divergence).
+//! Errors a user can cause (bad configuration) and the one a run can end with (divergence):
+//! the vocabulary every layer shares.
 
 use serde::Serialize;
 
@@ -60,6 +61,18 @@ pub enum ConfigError {
         "angle = 0°: the seed scheme cannot start from the horizontal: its support tension F_0 = sin φ0 is zero there and the support condition (11) divides by it; start from a small angle (e.g. 1°) or use the chain method, which starts from the horizontal"
     )]
     SeedFromHorizontal,
+    #[error("{flag}: a study is of one scene, {count} given; run one study per scene")]
+    StudyScenes { flag: &'static str, count: usize },
+    #[error("duration = {0}: a study's runs must end, at a finite number of time units > 0")]
+    StudyDuration(f64),
+    #[error("dts: {0} is not a positive, finite time step (for example 1e-4)")]
+    StudyTimeStep(f64),
+    #[error("segments: {segments} is too few (every method needs at least {min})")]
+    StudySegments { segments: usize, min: usize },
+    #[error(
+        "reference-segments = {0}: must be an even number ≥ 4 (the reference is extrapolated from N and N/2)"
+    )]
+    ReferenceSegments(usize),
     #[error("mode-number = {0}: must be 1, 2, 3 or 4")]
     ModeNumber(u32),
     #[error(

@@ -1,9 +1,9 @@
 //! Every bad parameter gets its own error, naming the parameter and what would work.
 
-use rope::app::RunConfig;
 use rope::error::ConfigError;
-use rope::method::MethodKind;
-use rope::scene::Scene;
+use rope::methods::MethodKind;
+use rope::model::Scene;
+use rope::run::{RunConfig, RunPlan};
 
 const THIRTY: Scene = Scene::Release { angle_deg: 30.0 };
 
@@ -12,8 +12,27 @@ fn config(
     scene: Scene,
     segments: usize,
     dt: Option<f64>,
-) -> Result<RunConfig, ConfigError> {
-    RunConfig::new(method, scene, segments, dt, 1.0, 60.0, None, false)
+) -> Result<RunPlan, ConfigError> {
+    RunConfig {
+        method,
+        scene,
+        segments,
+        dt,
+        duration: 1.0,
+        ..RunConfig::default()
+    }
+    .validate()
+}
+
+/// The report's 30° release at N = 100, one time unit, default step: change one thing.
+fn report() -> RunConfig {
+    RunConfig {
+        method: MethodKind::Seed,
+        scene: THIRTY,
+        segments: 100,
+        duration: 1.0,
+        ..RunConfig::default()
+    }
 }
 
 #[test]
@@ -43,16 +62,13 @@ fn time_step_past_the_seed_stability_limit() {
     assert!(err.to_string().contains("use dt ≤"), "{err}");
     // …unless asked for.
     assert!(
-        RunConfig::new(
-            MethodKind::Seed,
-            THIRTY,
-            100,
-            Some(2e-2),
-            1.0,
-            10.0,
-            None,
-            true
-        )
+        RunConfig {
+            dt: Some(2e-2),
+            log_rate: 10.0,
+            allow_unstable: true,
+            ..report()
+        }
+        .validate()
         .is_ok()
     );
 }
@@ -60,21 +76,21 @@ fn time_step_past_the_seed_stability_limit() {
 #[test]
 fn duration_negative_or_nan_but_endless_is_fine() {
     for d in [-1.0, f64::NAN, f64::NEG_INFINITY] {
-        let err =
-            RunConfig::new(MethodKind::Seed, THIRTY, 100, None, d, 60.0, None, false).unwrap_err();
+        let err = RunConfig {
+            duration: d,
+            ..report()
+        }
+        .validate()
+        .unwrap_err();
         assert!(matches!(err, ConfigError::Duration(_)));
         assert!(err.to_string().starts_with("duration = "));
     }
-    let endless = RunConfig::new(
-        MethodKind::Chain,
-        THIRTY,
-        100,
-        None,
-        f64::INFINITY,
-        60.0,
-        None,
-        false,
-    );
+    let endless = RunConfig {
+        method: MethodKind::Chain,
+        duration: f64::INFINITY,
+        ..report()
+    }
+    .validate();
     assert!(endless.is_ok());
 }
 
@@ -154,35 +170,31 @@ fn amplitude_too_large_or_not_finite() {
 
 #[test]
 fn log_rate_not_positive_or_above_the_step_rate() {
-    let err =
-        RunConfig::new(MethodKind::Seed, THIRTY, 100, None, 1.0, 0.0, None, false).unwrap_err();
+    let err = RunConfig {
+        log_rate: 0.0,
+        ..report()
+    }
+    .validate()
+    .unwrap_err();
     assert!(matches!(err, ConfigError::LogRate(_)));
-    let err = RunConfig::new(
-        MethodKind::Seed,
-        THIRTY,
-        100,
-        Some(1e-2),
-        1.0,
-        1000.0,
-        None,
-        true,
-    )
+    let err = RunConfig {
+        dt: Some(1e-2),
+        log_rate: 1000.0,
+        allow_unstable: true,
+        ..report()
+    }
+    .validate()
     .unwrap_err();
     assert!(matches!(err, ConfigError::LogRateAboveSteps { .. }));
 }
 
 #[test]
 fn realtime_speed_not_positive() {
-    let err = RunConfig::new(
-        MethodKind::Seed,
-        THIRTY,
-        100,
-        None,
-        1.0,
-        60.0,
-        Some(0.0),
-        false,
-    )
+    let err = RunConfig {
+        realtime: Some(0.0),
+        ..report()
+    }
+    .validate()
     .unwrap_err();
     assert!(matches!(err, ConfigError::Realtime(_)));
 }

@@ -4,9 +4,8 @@
 mod common;
 
 use common::*;
-use rope::chain::Chain;
-use rope::method::MethodKind;
-use rope::scene::Scene;
+use rope::methods::MethodKind;
+use rope::model::Scene;
 
 const THIRTY: Scene = Scene::Release { angle_deg: 30.0 };
 const HORIZONTAL: Scene = Scene::Release { angle_deg: 0.0 };
@@ -17,7 +16,7 @@ fn horizontal_release_tip_falls_with_exactly_g_until_t_1_2() {
         MethodKind::Chain,
         HORIZONTAL,
         100,
-        Chain::default_dt(100),
+        MethodKind::Chain.default_dt(100),
         1.2,
         100.0,
     );
@@ -36,7 +35,7 @@ fn thirty_degree_release_tip_follows_the_general_free_fall_law() {
         MethodKind::Chain,
         THIRTY,
         100,
-        Chain::default_dt(100),
+        MethodKind::Chain.default_dt(100),
         1.2,
         100.0,
     );
@@ -50,9 +49,10 @@ fn thirty_degree_release_tip_follows_the_general_free_fall_law() {
 #[test]
 fn mode_frequencies_match_bernoulli_within_0_2_percent() {
     for (n, expected) in [(1, 1.2024), (2, 2.7601)] {
-        let exact = rope::bessel::mode_frequency(n);
+        let exact = rope::model::bessel::mode_frequency(n);
         assert!((exact - expected).abs() < 1e-4);
-        let w = mode_angular_frequency(MethodKind::Chain, n, 100, Chain::default_dt(100));
+        let w =
+            mode_angular_frequency(MethodKind::Chain, n, 100, MethodKind::Chain.default_dt(100));
         assert!(
             (w / exact - 1.0).abs() < 0.002,
             "mode {n}: ω = {w}, Bernoulli {exact}"
@@ -63,7 +63,13 @@ fn mode_frequencies_match_bernoulli_within_0_2_percent() {
 #[test]
 fn energy_drift_over_one_time_unit_is_below_1e_6_at_the_default_step() {
     for scene in [THIRTY, HORIZONTAL] {
-        let outcome = run_to(MethodKind::Chain, scene, 100, Chain::default_dt(100), 1.0);
+        let outcome = run_to(
+            MethodKind::Chain,
+            scene,
+            100,
+            MethodKind::Chain.default_dt(100),
+            1.0,
+        );
         assert!(outcome.diverged.is_none());
         let rel = outcome.max_rel_deviation();
         assert!(rel < 1e-6, "{scene:?}: relative drift {rel}");
@@ -76,7 +82,7 @@ fn energy_never_grows_and_drifts_below_1e_6_over_ten_time_units() {
         MethodKind::Chain,
         THIRTY,
         100,
-        Chain::default_dt(100),
+        MethodKind::Chain.default_dt(100),
         10.0,
         20.0,
     );
@@ -97,7 +103,16 @@ fn energy_never_grows_and_drifts_below_1e_6_over_ten_time_units() {
 
 #[test]
 fn tip_position_at_t1_converges_at_second_order() {
-    let tip = |n: usize| run_to(MethodKind::Chain, THIRTY, n, Chain::default_dt(n), 1.0).tip;
+    let tip = |n: usize| {
+        run_to(
+            MethodKind::Chain,
+            THIRTY,
+            n,
+            MethodKind::Chain.default_dt(n),
+            1.0,
+        )
+        .tip
+    };
     let fine = [tip(200), tip(400)];
     // Richardson: second-order extrapolation from N = 200 and 400.
     let converged = fine[1] + (fine[1] - fine[0]) / 3.0;
@@ -118,7 +133,7 @@ fn tip_position_at_t1_converges_at_second_order() {
         MethodKind::Seed,
         THIRTY,
         100,
-        rope::seed::Seed::default_dt(100),
+        MethodKind::Seed.default_dt(100),
         1.0,
     )
     .tip;

@@ -1,8 +1,8 @@
 //! A step allocates nothing: counted by a global allocator wrapped around the system one,
 //! counting only on the thread that measures (the test harness allocates on its own).
 
-use rope::method::MethodKind;
-use rope::scene::Scene;
+use rope::methods::MethodKind;
+use rope::model::Scene;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 

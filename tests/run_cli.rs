@@ -127,7 +127,7 @@ fn mode_scene_summary_measures_the_period() {
         String::from_utf8_lossy(&out.stderr)
     );
     let period = summary(&json)["period"].as_f64().expect("a period");
-    let bernoulli = std::f64::consts::TAU / rope::bessel::mode_frequency(1);
+    let bernoulli = std::f64::consts::TAU / rope::model::bessel::mode_frequency(1);
     assert!(
         (period / bernoulli - 1.0).abs() < 0.01,
         "period {period}, Bernoulli {bernoulli}"
@@ -362,26 +362,62 @@ fn study_rejects_bad_grids_with_exit_2() {
     assert_each_exits_2_naming(&["study", "--out", "/nonexistent/never"], &cases);
 }
 
+/// `rope run --duration 0.5 --connect` to a port on this machine, with `more` flags.
+fn run_connected_to(port: u16, more: &[&str]) -> std::process::Output {
+    let url = format!("rerun+http://127.0.0.1:{port}/proxy");
+    let mut args = vec!["run", "--duration", "0.5", "--connect", &url];
+    args.extend_from_slice(more);
+    rope(&args)
+}
+
 #[test]
-fn a_viewer_that_is_not_there_costs_the_recording_not_the_summary() {
-    // A free port on this machine with nothing listening.
+fn a_refused_connection_is_reported_at_once_before_anything_runs() {
+    // A free port on this machine with nothing listening: the connection is refused.
     let port = std::net::TcpListener::bind("127.0.0.1:0")
         .unwrap()
         .local_addr()
         .unwrap()
         .port();
+    let dir = Scratch::new("refused");
+    let json = dir.path("s.json");
+    let started = Instant::now();
+    let out = run_connected_to(port, &["--summary", json.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    // Known at once: no grace to wait out (the bound leaves room for a loaded machine).
+    assert!(
+        started.elapsed() < Duration::from_secs(3),
+        "took {:?}",
+        started.elapsed()
+    );
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("connect = ") && stderr.contains("no viewer is listening there"),
+        "{stderr}"
+    );
+    assert!(!json.exists(), "nothing ran, so no summary");
+
+    // With a file to keep the run, it goes on without the viewer, and says so.
+    let file = dir.path("kept.rrd");
+    let out = run_connected_to(port, &["--save", file.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    assert!(
+        stderr.contains("the connection was refused") && stderr.contains("goes on"),
+        "{stderr}"
+    );
+    assert_eq!(Recording::read(&file).temporal_rows("rope/tip"), 31);
+}
+
+#[test]
+fn a_viewer_that_takes_nothing_costs_the_recording_not_the_summary() {
+    // Something that takes the connection (the kernel completes it for a listening socket)
+    // but never reads: a viewer that takes none of the data.
+    let silent = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let port = silent.local_addr().unwrap().port();
     let dir = Scratch::new("noviewer");
     let json = dir.path("s.json");
     let started = Instant::now();
-    let out = rope(&[
-        "run",
-        "--duration",
-        "0.5",
-        "--connect",
-        &format!("rerun+http://127.0.0.1:{port}/proxy"),
-        "--summary",
-        json.to_str().unwrap(),
-    ]);
+    let out = run_connected_to(port, &["--summary", json.to_str().unwrap()]);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(
         started.elapsed() < Duration::from_secs(20),
@@ -389,12 +425,16 @@ fn a_viewer_that_is_not_there_costs_the_recording_not_the_summary() {
         started.elapsed()
     );
     assert_eq!(out.status.code(), Some(1), "{stderr}");
+    // Always this reason, never the recording's own flush timeout (which waits longer).
     assert!(
-        stderr.contains("the recording is incomplete: no viewer answered at"),
+        stderr.contains(&format!(
+            "the recording is incomplete: the viewer at rerun+http://127.0.0.1:{port}/proxy did not take the data within"
+        )),
         "{stderr}"
     );
     let s = summary(&json);
     assert_eq!(s["status"], "ok");
     assert_eq!(s["frames_logged"], 31);
     assert!(s["recording_error"].is_string());
+    drop(silent);
 }

@@ -5,9 +5,9 @@
 mod common;
 
 use common::*;
-use rope::method::{Method, MethodKind};
-use rope::scene::Scene;
-use rope::seed::{Seed, SupportSign};
+use rope::methods::seed::{Seed, SupportSign};
+use rope::methods::{Method, MethodKind};
+use rope::model::Scene;
 use std::f64::consts::FRAC_PI_2;
 
 const THIRTY: Scene = Scene::Release { angle_deg: 30.0 };
@@ -19,7 +19,7 @@ fn hanging_string_stays_put_with_tension_one_minus_s() {
     for _ in 0..2000 {
         seed.step().unwrap();
     }
-    let mut obs = rope::method::Observation::default();
+    let mut obs = rope::methods::Observation::default();
     seed.observe(&mut obs);
     let h = 1.0 / n as f64;
     for (i, (&phi, &f)) in obs.angle.iter().zip(&obs.tension).enumerate() {
@@ -99,13 +99,20 @@ fn tip_falls_freely_across_the_initial_line_until_the_bend_arrives() {
 fn tip_position_at_t1_converges_at_first_order() {
     // Reference: the rigid-rod chain, an independent discretisation that converges at second
     // order to the same continuum (its N = 400 error is ~1e-6, below the seed's by 1000×).
-    let dt = rope::chain::Chain::default_dt(400);
+    let dt = MethodKind::Chain.default_dt(400);
     let reference = run_to(MethodKind::Chain, THIRTY, 400, dt, 1.0).tip;
     let segments = [50, 100, 200, 400, 800];
     let errors: Vec<f64> = segments
         .iter()
         .map(|&n| {
-            let tip = run_to(MethodKind::Seed, THIRTY, n, Seed::default_dt(n), 1.0).tip;
+            let tip = run_to(
+                MethodKind::Seed,
+                THIRTY,
+                n,
+                MethodKind::Seed.default_dt(n),
+                1.0,
+            )
+            .tip;
             (tip - reference).norm()
         })
         .collect();
@@ -119,15 +126,7 @@ fn tip_position_at_t1_converges_at_first_order() {
 #[test]
 fn printed_support_sign_makes_the_same_run_diverge() {
     let mut seed = Seed::with_support_sign(&THIRTY, 100, 1e-5, SupportSign::Printed).unwrap();
-    let outcome = rope::simulate::run(
-        &mut seed,
-        &rope::simulate::Options {
-            duration: 1.0,
-            log_rate: 0.0,
-        },
-        None,
-        |_| std::ops::ControlFlow::Continue(()),
-    );
+    let outcome = rope::run::simulate::run_to(&mut seed, 1.0);
     let diverged = outcome
         .diverged
         .expect("the printed sign must be detected as divergent");
@@ -137,13 +136,13 @@ fn printed_support_sign_makes_the_same_run_diverge() {
 
 #[test]
 fn mode_one_oscillates_at_bernoulli_frequency_within_one_percent() {
-    let w = mode_angular_frequency(MethodKind::Seed, 1, 100, Seed::default_dt(100));
+    let w = mode_angular_frequency(MethodKind::Seed, 1, 100, MethodKind::Seed.default_dt(100));
     assert!((w / 1.2024 - 1.0).abs() < 0.01, "ω1 = {w}");
 }
 
 #[test]
 fn mode_two_oscillates_at_bernoulli_frequency_within_two_percent() {
-    let w = mode_angular_frequency(MethodKind::Seed, 2, 100, Seed::default_dt(100));
+    let w = mode_angular_frequency(MethodKind::Seed, 2, 100, MethodKind::Seed.default_dt(100));
     assert!((w / 2.7601 - 1.0).abs() < 0.02, "ω2 = {w}");
 }
 
@@ -161,7 +160,7 @@ fn time_step_far_past_the_stable_range_is_reported_diverged_with_step_and_time()
 
 #[test]
 fn time_step_well_inside_the_stable_range_does_not_diverge() {
-    let dt = 0.5 * Seed::stability_limit(100);
+    let dt = 0.5 * MethodKind::Seed.stability_limit(100);
     let outcome = run_to(MethodKind::Seed, THIRTY, 100, dt, 3.0);
     assert!(outcome.diverged.is_none(), "{:?}", outcome.diverged);
 }

@@ -176,28 +176,53 @@ fn an_endless_served_run_streams_history_then_live_frames_to_a_late_viewer() {
     );
 }
 
-/// A viewer-side endpoint this test controls: a `rope` hosting Rerun's gRPC server.
-fn endpoint(port: u16) -> Child {
-    let endpoint = start(&[
-        "run",
-        "--duration",
-        "inf",
-        "--realtime",
-        "--log-rate",
-        "1",
-        "--serve-grpc",
-        &format!("127.0.0.1:{port}"),
-    ]);
-    wait_listening(port);
-    endpoint
+/// A viewer-side endpoint this test controls: a `rope` hosting Rerun's gRPC server, returned
+/// with its port once it says it is serving. If a test running beside this one took the port
+/// picked, the endpoint cannot listen there and another port is tried.
+fn endpoint() -> (Child, u16) {
+    for _ in 0..5 {
+        let port = free_port();
+        let mut endpoint = start(&[
+            "run",
+            "--duration",
+            "inf",
+            "--realtime",
+            "--log-rate",
+            "1",
+            "--serve-grpc",
+            &format!("127.0.0.1:{port}"),
+        ]);
+        if says_it_is_serving(&mut endpoint) {
+            return (endpoint, port);
+        }
+        endpoint.kill().ok();
+        endpoint.wait().ok();
+    }
+    panic!("no endpoint could be started on five ports");
+}
+
+/// Reads `child`'s stderr until it says it is serving (true) or ends (false); a thread goes
+/// on draining the rest.
+fn says_it_is_serving(child: &mut Child) -> bool {
+    use std::io::BufRead as _;
+    let stderr = child.stderr.take().expect("stderr is piped");
+    let (serving, said) = crossbeam_channel::bounded(1);
+    std::thread::spawn(move || {
+        for line in std::io::BufReader::new(stderr).lines() {
+            let Ok(line) = line else { break };
+            if line.contains("rope: serving at") {
+                serving.try_send(()).ok();
+            }
+        }
+    });
+    said.recv_timeout(Duration::from_secs(20)).is_ok()
 }
 
 #[test]
 fn a_killed_viewer_stops_a_connect_only_run_within_seconds_with_a_clear_message() {
     let dir = Scratch::new("viewer-killed");
     let json = dir.path("c.json");
-    let port = free_port();
-    let mut viewer = endpoint(port);
+    let (mut viewer, port) = endpoint();
     let mut run = start(&[
         "run",
         "--duration",
@@ -209,7 +234,12 @@ fn a_killed_viewer_stops_a_connect_only_run_within_seconds_with_a_clear_message(
         json.to_str().unwrap(),
     ]);
     std::thread::sleep(Duration::from_millis(1500));
-    assert!(wait_for(&mut run, Duration::ZERO).is_none(), "streaming");
+    if let Some(status) = wait_for(&mut run, Duration::ZERO) {
+        panic!(
+            "the run ended ({status}) instead of streaming: {}",
+            stderr_of(&mut run)
+        );
+    }
     signal(&viewer, "-KILL");
     let killed = Instant::now();
     wait_for(&mut viewer, Duration::from_secs(5)).expect("the viewer is gone");
@@ -232,8 +262,7 @@ fn a_killed_viewer_stops_a_connect_only_run_within_seconds_with_a_clear_message(
 fn a_killed_viewer_leaves_a_watch_and_save_run_going_and_its_file_complete() {
     let dir = Scratch::new("viewer-killed-save");
     let (rrd, json) = (dir.path("w.rrd"), dir.path("w.json"));
-    let port = free_port();
-    let mut viewer = endpoint(port);
+    let (mut viewer, port) = endpoint();
     let mut run = start(&[
         "run",
         "--duration",
@@ -276,8 +305,7 @@ fn a_killed_viewer_leaves_a_watch_and_save_run_going_and_its_file_complete() {
 
 #[test]
 fn a_frozen_viewer_counts_as_gone_once_it_takes_nothing_for_5_s() {
-    let port = free_port();
-    let mut viewer = endpoint(port);
+    let (mut viewer, port) = endpoint();
     let mut run = start(&[
         "run",
         "--duration",

@@ -2,9 +2,10 @@
 //! chart files), the committed error model against a fresh fit, and the tolerance rule
 //! against a fine reference. Timings are not tested here (they live in benchmarks).
 
-use rope::method::MethodKind;
-use rope::scene::Scene;
-use rope::study::{self, Spec, Status, model};
+use rope::methods::MethodKind;
+use rope::methods::tolerance::{self, Choice};
+use rope::model::Scene;
+use rope::study::{self, Spec, Status};
 
 const THIRTY: Scene = Scene::Release { angle_deg: 30.0 };
 
@@ -105,8 +106,8 @@ fn committed_error_model_agrees_with_a_fresh_fit() {
     let mut rows = study::run_grid(&spec, || {});
     study::measure_errors(&mut rows, &reference);
     for method in MethodKind::ALL {
-        let fresh = model::fit(&rows, method, 20).expect("enough points to fit");
-        let committed = model::committed(method);
+        let fresh = study::fit(&rows, method, 20).expect("enough points to fit");
+        let committed = method.descriptor().error_model;
         assert!(
             (fresh.order - committed.order).abs() < 0.15,
             "{method}: {fresh:?} vs {committed:?}"
@@ -124,7 +125,7 @@ fn tolerance_rule_meets_each_tolerance_and_the_looser_one_is_cheaper() {
     let reference = study::reference(&THIRTY, 1.0, 800).unwrap();
     let mut choices = Vec::new();
     for tolerance in [1e-2, 1e-5] {
-        let choice = model::choose(tolerance, 1.0, &THIRTY).expect("a method can do it");
+        let choice = tolerance::choose(tolerance, 1.0, &THIRTY).expect("a method can do it");
         let row = study::run_cell(&THIRTY, 1.0, choice.method, choice.segments, choice.dt);
         let achieved = (row.tip.unwrap() - reference.tip).norm();
         assert!(
@@ -137,24 +138,24 @@ fn tolerance_rule_meets_each_tolerance_and_the_looser_one_is_cheaper() {
         choices[0].predicted_seconds < choices[1].predicted_seconds,
         "{choices:?}"
     );
-    let work = |c: &model::Choice| c.segments as f64 / c.dt;
+    let work = |c: &Choice| c.segments as f64 / c.dt;
     assert!(work(&choices[0]) < work(&choices[1]), "{choices:?}");
 }
 
 #[test]
 fn a_loose_tolerance_picks_the_seed_scheme_and_a_tight_one_the_chain() {
     assert_eq!(
-        model::choose(1e-1, 1.0, &THIRTY).unwrap().method,
+        tolerance::choose(1e-1, 1.0, &THIRTY).unwrap().method,
         MethodKind::Seed
     );
     assert_eq!(
-        model::choose(1e-4, 1.0, &THIRTY).unwrap().method,
+        tolerance::choose(1e-4, 1.0, &THIRTY).unwrap().method,
         MethodKind::Chain
     );
     // From the horizontal only the chain can start.
     let horizontal = Scene::Release { angle_deg: 0.0 };
     assert_eq!(
-        model::choose(1e-1, 1.0, &horizontal).unwrap().method,
+        tolerance::choose(1e-1, 1.0, &horizontal).unwrap().method,
         MethodKind::Chain
     );
 }

@@ -1,8 +1,9 @@
 //! The study's charts, each drawn twice, as SVG and as PNG: work–precision, the stability
 //! map, and the report's Figs. 1–4.
 
-use super::{Row, Status};
-use crate::method::MethodKind;
+use super::grid::{Row, Status};
+use crate::methods::{MethodKind, REPORT};
+use crate::run::simulate::REFERENCE_STEP;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::ops::Range;
@@ -19,7 +20,7 @@ type Drawn<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorTy
 type Series = (String, RGBColor, Vec<(f64, f64)>);
 
 /// What a work–precision panel plots against cost: a label and how to read it off a row.
-type Metric = (&'static str, fn(&Row) -> Option<f64>);
+type Metric = (String, fn(&Row) -> Option<f64>);
 
 /// Registers the shipped font; call once before drawing PNGs.
 pub fn register_font() -> anyhow::Result<()> {
@@ -54,10 +55,12 @@ fn shade(method: MethodKind, i: usize, count: usize) -> RGBColor {
         1.0
     };
     let mix = |a: u8, b: u8| (a as f64 + (b as f64 - a as f64) * t).round() as u8;
-    match method {
-        MethodKind::Seed => RGBColor(mix(250, 150), mix(170, 30), mix(60, 0)),
-        MethodKind::Chain => RGBColor(mix(110, 10), mix(170, 40), mix(240, 140)),
-    }
+    let (coarse, fine) = method.descriptor().colours;
+    RGBColor(
+        mix(coarse[0], fine[0]),
+        mix(coarse[1], fine[1]),
+        mix(coarse[2], fine[2]),
+    )
 }
 
 /// Draws the legend box every chart uses, at `position` with labels of `size` points.
@@ -140,75 +143,87 @@ fn work_precision<DB: DrawingBackend>(
     let ok: Vec<&Row> = rows.iter().filter(|r| r.status == Status::Ok).collect();
     let x_range = log_range(ok.iter().map(|r| r.cpu_seconds));
     let metrics: [Metric; 2] = [
-        ("tip error at the final time (string lengths)", |r| {
-            r.tip_error
-        }),
-        ("energy deviation max|E − E₁₀|/|E|", |r| {
+        (
+            "tip error at the final time (string lengths)".to_owned(),
+            |r| r.tip_error,
+        ),
+        (format!("energy deviation {}", deviation_axis()), |r| {
             r.energy_deviation
         }),
     ];
     for (panel, (label, metric)) in panels.iter().zip(metrics) {
-        let y_range = log_range(ok.iter().filter_map(|r| metric(r)));
-        let mut chart = ChartBuilder::on(panel)
-            .margin(12)
-            .x_label_area_size(45)
-            .y_label_area_size(70)
-            .build_cartesian_2d(x_range.clone().log_scale(), y_range.log_scale())?;
-        chart
-            .configure_mesh()
-            .x_desc("CPU seconds (one run, one core)")
-            .y_desc(label)
-            .x_label_formatter(&|v| format!("{v:.0e}"))
-            .y_label_formatter(&|v| format!("{v:.0e}"))
-            .label_style((SANS, 13))
-            .draw()?;
-        for method in MethodKind::ALL {
-            let counts = segment_counts(rows, method);
-            for (i, &n) in counts.iter().enumerate() {
-                let mut pts: Vec<(f64, f64)> = ok
-                    .iter()
-                    .filter(|r| r.method == method && r.segments == n)
-                    .filter_map(|r| metric(r).filter(|e| *e > 0.0).map(|e| (r.cpu_seconds, e)))
-                    .collect();
-                if pts.is_empty() {
-                    continue;
-                }
-                pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-                let color = shade(method, i, counts.len());
-                chart
-                    .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))?
-                    .label(format!("{method} N = {n}"))
-                    .legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(3))
-                    });
-                chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))?;
-            }
-        }
-        let all: Vec<(f64, f64)> = ok
-            .iter()
-            .filter_map(|r| metric(r).filter(|e| *e > 0.0).map(|e| (r.cpu_seconds, e)))
-            .collect();
-        let front = pareto_front(&all);
-        chart
-            .draw_series(LineSeries::new(front.clone(), BLACK.stroke_width(1)))?
-            .label("Pareto front")
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLACK.stroke_width(1)));
-        chart.draw_series(
-            front
-                .iter()
-                .map(|&p| Circle::new(p, 6, BLACK.stroke_width(1))),
-        )?;
-        legend(
-            chart.configure_series_labels(),
-            SeriesLabelPosition::UpperRight,
-            11,
-        )?;
+        work_precision_panel(panel, rows, &ok, x_range.clone(), &label, metric)?;
     }
     Ok(())
 }
 
+/// One panel of the work–precision chart: `metric` against CPU seconds, a curve per method
+/// and N across k, and the Pareto front of all the runs.
+fn work_precision_panel<DB: DrawingBackend>(
+    panel: &DrawingArea<DB, Shift>,
+    rows: &[Row],
+    ok: &[&Row],
+    x_range: Range<f64>,
+    label: &str,
+    metric: fn(&Row) -> Option<f64>,
+) -> Drawn<DB> {
+    let point = |r: &Row| metric(r).filter(|e| *e > 0.0).map(|e| (r.cpu_seconds, e));
+    let y_range = log_range(ok.iter().filter_map(|r| metric(r)));
+    let mut chart = ChartBuilder::on(panel)
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(70)
+        .build_cartesian_2d(x_range.log_scale(), y_range.log_scale())?;
+    chart
+        .configure_mesh()
+        .x_desc("CPU seconds (one run, one core)")
+        .y_desc(label)
+        .x_label_formatter(&|v| format!("{v:.0e}"))
+        .y_label_formatter(&|v| format!("{v:.0e}"))
+        .label_style((SANS, 13))
+        .draw()?;
+    for method in MethodKind::ALL {
+        let counts = segment_counts(rows, method);
+        for (i, &n) in counts.iter().enumerate() {
+            let mut pts: Vec<(f64, f64)> = ok
+                .iter()
+                .filter(|r| r.method == method && r.segments == n)
+                .filter_map(|r| point(r))
+                .collect();
+            if pts.is_empty() {
+                continue;
+            }
+            pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let color = shade(method, i, counts.len());
+            chart
+                .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))?
+                .label(format!("{method} N = {n}"))
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(3))
+                });
+            chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))?;
+        }
+    }
+    let all: Vec<(f64, f64)> = ok.iter().filter_map(|r| point(r)).collect();
+    let front = pareto_front(&all);
+    chart
+        .draw_series(LineSeries::new(front.clone(), BLACK.stroke_width(1)))?
+        .label("Pareto front")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLACK.stroke_width(1)));
+    chart.draw_series(
+        front
+            .iter()
+            .map(|&p| Circle::new(p, 6, BLACK.stroke_width(1))),
+    )?;
+    legend(
+        chart.configure_series_labels(),
+        SeriesLabelPosition::UpperRight,
+        11,
+    )
+}
+
 /// Stability map: N × k, each run marked ok / diverged / refused, the measured boundary and
-/// the estimate k = C h / sqrt(F_max).
+/// the estimate k = C h / sqrt(F_max); one panel per method.
 fn stability<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     rows: &[Row],
@@ -221,80 +236,101 @@ fn stability<DB: DrawingBackend>(
         .filter(|m| rows.iter().any(|r| r.method == *m))
         .collect();
     let panels = root.split_evenly((1, methods.len().max(1)));
+    for (panel, &method) in panels.iter().zip(&methods) {
+        stability_panel(panel, rows, method)?;
+    }
+    Ok(())
+}
+
+/// One method's panel of the stability map.
+fn stability_panel<DB: DrawingBackend>(
+    panel: &DrawingArea<DB, Shift>,
+    rows: &[Row],
+    method: MethodKind,
+) -> Drawn<DB> {
     let x_range = log_range(rows.iter().map(|r| r.segments as f64));
     let y_range = log_range(rows.iter().map(|r| r.dt));
-    for (panel, &method) in panels.iter().zip(&methods) {
-        let mut chart = ChartBuilder::on(panel)
-            .caption(format!("{method}"), (SANS, 18))
-            .margin(12)
-            .x_label_area_size(45)
-            .y_label_area_size(70)
-            .build_cartesian_2d(x_range.clone().log_scale(), y_range.clone().log_scale())?;
+    let mut chart = ChartBuilder::on(panel)
+        .caption(format!("{method}"), (SANS, 18))
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(70)
+        .build_cartesian_2d(x_range.log_scale(), y_range.log_scale())?;
+    chart
+        .configure_mesh()
+        .x_desc("segments N")
+        .y_desc("time step k")
+        .x_labels(6)
+        .x_label_formatter(&|v| format!("{v:.0}"))
+        .y_label_formatter(&|v| format!("{v:.0e}"))
+        .label_style((SANS, 13))
+        .draw()?;
+    let mine: Vec<&Row> = rows.iter().filter(|r| r.method == method).collect();
+    draw_run_statuses(&mut chart, &mine)?;
+    let boundary = measured_boundary(rows, method);
+    if boundary.len() >= 2 {
         chart
-            .configure_mesh()
-            .x_desc("segments N")
-            .y_desc("time step k")
-            .x_labels(6)
-            .x_label_formatter(&|v| format!("{v:.0}"))
-            .y_label_formatter(&|v| format!("{v:.0e}"))
-            .label_style((SANS, 13))
-            .draw()?;
-        let mine: Vec<&Row> = rows.iter().filter(|r| r.method == method).collect();
-        let green = RGBColor(30, 150, 60);
-        let red = RGBColor(210, 40, 40);
-        chart
-            .draw_series(
-                mine.iter()
-                    .filter(|r| r.status == Status::Ok)
-                    .map(|r| Circle::new((r.segments as f64, r.dt), 5, green.filled())),
-            )?
-            .label("ok")
-            .legend(move |(x, y)| Circle::new((x + 8, y), 5, green.filled()));
-        chart
-            .draw_series(
-                mine.iter()
-                    .filter(|r| matches!(r.status, Status::Diverged { .. }))
-                    .map(|r| Cross::new((r.segments as f64, r.dt), 6, red.stroke_width(2))),
-            )?
-            .label("diverged")
-            .legend(move |(x, y)| Cross::new((x + 8, y), 6, red.stroke_width(2)));
-        chart
-            .draw_series(
-                mine.iter()
-                    .filter(|r| matches!(r.status, Status::Refused { .. }))
-                    .map(|r| {
-                        TriangleMarker::new((r.segments as f64, r.dt), 6, BLACK.mix(0.4).filled())
-                    }),
-            )?
-            .label("refused (cannot start)")
-            .legend(|(x, y)| TriangleMarker::new((x + 8, y), 6, BLACK.mix(0.4).filled()));
-        let boundary = measured_boundary(rows, method);
-        if boundary.len() >= 2 {
-            chart
-                .draw_series(LineSeries::new(boundary, BLACK.stroke_width(2)))?
-                .label("measured boundary")
-                .legend(|(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 18, y)], BLACK.stroke_width(2))
-                });
-        }
-        let estimate: Vec<(f64, f64)> = segment_counts(rows, method)
-            .iter()
-            .map(|&n| (n as f64, method.stability_limit(n)))
-            .collect();
-        let label = match method {
-            MethodKind::Seed => "estimate k = C h / sqrt(F_max)",
-            MethodKind::Chain => "substeps start: k = C h / sqrt(F_max)",
-        };
-        chart
-            .draw_series(DashedLineSeries::new(estimate, 8, 5, BLUE.stroke_width(2)))?
-            .label(label)
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLUE.stroke_width(2)));
-        legend(
-            chart.configure_series_labels(),
-            SeriesLabelPosition::LowerLeft,
-            12,
-        )?;
+            .draw_series(LineSeries::new(boundary, BLACK.stroke_width(2)))?
+            .label("measured boundary")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLACK.stroke_width(2)));
     }
+    let estimate: Vec<(f64, f64)> = segment_counts(rows, method)
+        .iter()
+        .map(|&n| (n as f64, method.stability_limit(n)))
+        .collect();
+    chart
+        .draw_series(DashedLineSeries::new(estimate, 8, 5, BLUE.stroke_width(2)))?
+        .label(method.descriptor().limit_meaning)
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLUE.stroke_width(2)));
+    legend(
+        chart.configure_series_labels(),
+        SeriesLabelPosition::LowerLeft,
+        12,
+    )
+}
+
+/// Each run of a stability panel, marked as it ended: ok, diverged, refused.
+fn draw_run_statuses<DB: DrawingBackend>(
+    chart: &mut ChartContext<'_, DB, Cartesian2d<LogCoord<f64>, LogCoord<f64>>>,
+    mine: &[&Row],
+) -> Drawn<DB> {
+    let at = |r: &Row| (r.segments as f64, r.dt);
+    let colour = |status: &Status| {
+        let [r, g, b] = status.rgb();
+        RGBColor(r, g, b)
+    };
+    let ok = colour(&Status::Ok);
+    let diverged = colour(&Status::Diverged {
+        time: 0.0,
+        reason: String::new(),
+    });
+    let refused = colour(&Status::Refused {
+        reason: String::new(),
+    });
+    chart
+        .draw_series(
+            mine.iter()
+                .filter(|r| r.status == Status::Ok)
+                .map(|r| Circle::new(at(r), 5, ok.filled())),
+        )?
+        .label("ok")
+        .legend(move |(x, y)| Circle::new((x + 8, y), 5, ok.filled()));
+    chart
+        .draw_series(
+            mine.iter()
+                .filter(|r| matches!(r.status, Status::Diverged { .. }))
+                .map(|r| Cross::new(at(r), 6, diverged.stroke_width(2))),
+        )?
+        .label("diverged")
+        .legend(move |(x, y)| Cross::new((x + 8, y), 6, diverged.stroke_width(2)));
+    chart
+        .draw_series(
+            mine.iter()
+                .filter(|r| matches!(r.status, Status::Refused { .. }))
+                .map(|r| TriangleMarker::new(at(r), 6, refused.filled())),
+        )?
+        .label("refused (cannot start)")
+        .legend(move |(x, y)| TriangleMarker::new((x + 8, y), 6, refused.filled()));
     Ok(())
 }
 
@@ -410,16 +446,13 @@ fn deviation_against_k(rows: &[Row], method: MethodKind, segments: usize) -> Vec
     pts
 }
 
-/// The time step nearest to 1e-5 in the grid (the report's), for Figs. 2–3.
+/// The time step nearest to the report's in the grid, for Figs. 2–3.
 fn reports_dt(rows: &[Row]) -> f64 {
+    let distance = |k: f64| (k.ln() - REPORT.dt.ln()).abs();
     rows.iter()
         .map(|r| r.dt)
-        .min_by(|a, b| {
-            (a.ln() - 1e-5f64.ln())
-                .abs()
-                .total_cmp(&(b.ln() - 1e-5f64.ln()).abs())
-        })
-        .unwrap_or(1e-5)
+        .min_by(|a, b| distance(*a).total_cmp(&distance(*b)))
+        .unwrap_or(REPORT.dt)
 }
 
 /// Writes every chart into `dir`. `startup` holds the start-up kinetic energy series
@@ -444,30 +477,55 @@ pub fn write_all(
         rows,
         &format!("Stability map, {scene_title}")
     )?;
-    let color = |m: MethodKind| shade(m, 1, 1);
-    let fig1: Vec<_> = startup
+    write_startup_burst(dir, startup)?;
+    write_energy_against_n(dir, rows)?;
+    write_energy_against_k(dir, rows)
+}
+
+/// The energy deviation's axis: the report's criterion, against the energy after the
+/// start-up burst.
+fn deviation_axis() -> String {
+    format!("max|E − E_ref|/|E|, E_ref at step {REFERENCE_STEP}")
+}
+
+/// A method's colour on the report's figures.
+fn colour(method: MethodKind) -> RGBColor {
+    shade(method, 1, 1)
+}
+
+/// Fig. 1: the kinetic energy of the first steps.
+fn write_startup_burst(
+    dir: &Path,
+    startup: &[(MethodKind, Vec<(f64, f64)>)],
+) -> anyhow::Result<()> {
+    let series: Vec<_> = startup
         .iter()
-        .map(|(m, pts)| (format!("{m}"), color(*m), pts.clone()))
+        .map(|(m, pts)| (format!("{m}"), colour(*m), pts.clone()))
         .collect();
+    let title = format!(
+        "Fig. 1: kinetic energy at start-up (N = {}, k = {:e}, first 300 steps)",
+        REPORT.segments, REPORT.dt
+    );
     render!(
         dir,
         "fig1_startup_burst",
         lines,
-        "Fig. 1: kinetic energy at start-up (N = 100, k = 1e-5, first 300 steps)",
+        &title,
         "time",
         "kinetic energy (m g L)",
         (false, true),
-        &fig1
-    )?;
+        &series
+    )
+}
+
+/// Figs. 2 and 3: energy deviation against N, linear and log–log.
+fn write_energy_against_n(dir: &Path, rows: &[Row]) -> anyhow::Result<()> {
     let dt = reports_dt(rows);
-    let by_n: Vec<_> = MethodKind::ALL
+    let series: Vec<_> = MethodKind::ALL
         .iter()
         .map(|&m| {
-            (
-                format!("{m}, k = {dt:e}"),
-                color(m),
-                deviation_against_n(rows, m, dt),
-            )
+            let label = format!("{m}, k = {dt:e}");
+            (label, colour(m), deviation_against_n(rows, m, dt))
         })
         .filter(|s| !s.2.is_empty())
         .collect();
@@ -477,9 +535,9 @@ pub fn write_all(
         lines,
         "Fig. 2: energy deviation against N",
         "segments N",
-        "max|E − E₁₀|/|E|",
+        &deviation_axis(),
         (false, false),
-        &by_n
+        &series
     )?;
     render!(
         dir,
@@ -487,30 +545,38 @@ pub fn write_all(
         lines,
         "Fig. 3: energy deviation against N (log–log)",
         "segments N",
-        "max|E − E₁₀|/|E|",
+        &deviation_axis(),
         (true, true),
-        &by_n
-    )?;
-    let by_k: Vec<_> = MethodKind::ALL
+        &series
+    )
+}
+
+/// Fig. 4: energy deviation against k at the report's N.
+fn write_energy_against_k(dir: &Path, rows: &[Row]) -> anyhow::Result<()> {
+    let series: Vec<_> = MethodKind::ALL
         .iter()
         .map(|&m| {
+            let label = format!("{m}, N = {}", REPORT.segments);
             (
-                format!("{m}, N = 100"),
-                color(m),
-                deviation_against_k(rows, m, 100),
+                label,
+                colour(m),
+                deviation_against_k(rows, m, REPORT.segments),
             )
         })
         .filter(|s| !s.2.is_empty())
         .collect();
+    let title = format!(
+        "Fig. 4: energy deviation against k (N = {}; missing points diverged)",
+        REPORT.segments
+    );
     render!(
         dir,
         "fig4_energy_vs_k",
         lines,
-        "Fig. 4: energy deviation against k (N = 100; missing points diverged)",
+        &title,
         "time step k",
-        "max|E − E₁₀|/|E|",
+        &deviation_axis(),
         (true, true),
-        &by_k
-    )?;
-    Ok(())
+        &series
+    )
 }

@@ -2,13 +2,12 @@
 //! cheapest run that reaches the report's accuracy.
 
 use super::charts::measured_boundary;
-use super::model::{self, ErrorModel};
-use super::{Reference, Row, Status};
-use crate::method::MethodKind;
+use super::grid::{Row, Status, fit};
+use super::reference::Reference;
+use crate::methods::Descriptor;
+use crate::methods::error_model::ErrorModel;
+use crate::methods::{MethodKind, REPORT};
 use std::fmt::Write as _;
-
-/// The report's setting: seed scheme, N = 100, k = 1e-5.
-pub const REPORT: (usize, f64) = (100, 1e-5);
 
 /// Everything the study concludes, as numbers and as text.
 #[derive(Clone, Debug)]
@@ -19,10 +18,10 @@ pub struct Findings {
     /// The report's run, and the cheapest run at least as accurate (tip and energy).
     pub report_run: Option<Row>,
     pub cheapest: Option<Row>,
-    /// The seed scheme's most accurate run (smallest tip error, then least CPU), and the
-    /// chain's cheapest run at least as accurate.
-    pub seed_best: Option<Row>,
-    pub chain_matching: Option<Row>,
+    /// The report's method's cheapest run within 10 % of its best tip error, and each other
+    /// method's cheapest run at least as accurate.
+    pub report_method_best: Option<Row>,
+    pub matching: Vec<Row>,
 }
 
 /// Energy deviation as the "error" of a fit (same fitting code, other metric).
@@ -49,9 +48,9 @@ impl Findings {
         let report_run = rows
             .iter()
             .find(|r| {
-                r.method == MethodKind::Seed
-                    && r.segments == REPORT.0
-                    && (r.dt / REPORT.1 - 1.0).abs() < 1e-9
+                r.method == REPORT.method
+                    && r.segments == REPORT.segments
+                    && (r.dt / REPORT.dt - 1.0).abs() < 1e-9
                     && r.status == Status::Ok
             })
             .cloned();
@@ -64,45 +63,28 @@ impl Findings {
                 .min_by(|a, b| a.cpu_seconds.total_cmp(&b.cpu_seconds))
                 .cloned()
         });
-        let ok = |m: MethodKind| {
-            rows.iter()
-                .filter(move |r| r.method == m && r.status == Status::Ok)
-        };
-        let seed_best = ok(MethodKind::Seed)
-            .filter(|r| r.tip_error.is_some())
-            .min_by(|a, b| {
-                let key = |r: &Row| (r.tip_error.unwrap_or(f64::MAX), r.cpu_seconds);
-                key(a)
-                    .partial_cmp(&key(b))
-                    .unwrap_or(std::cmp::Ordering::Equal)
+        let report_method_best = best_of(rows, REPORT.method);
+        let matching = report_method_best
+            .as_ref()
+            .and_then(|best| best.tip_error)
+            .map(|target| {
+                MethodKind::ALL
+                    .into_iter()
+                    .filter(|&m| m != REPORT.method)
+                    .filter_map(|m| cheapest_within(rows, m, target))
+                    .collect()
             })
-            .cloned();
-        // Runs within 10 % of the best error count as reaching it (time steps change the
-        // seed's error by less than that); the cheapest of those is the seed's own cost.
-        let seed_best = seed_best.and_then(|best| {
-            let target = best.tip_error? * 1.1;
-            ok(MethodKind::Seed)
-                .filter(|r| r.tip_error.is_some_and(|e| e <= target))
-                .min_by(|a, b| a.cpu_seconds.total_cmp(&b.cpu_seconds))
-                .cloned()
-        });
-        let chain_matching = seed_best.as_ref().and_then(|best| {
-            let target = best.tip_error?;
-            ok(MethodKind::Chain)
-                .filter(|r| r.tip_error.is_some_and(|e| e <= target))
-                .min_by(|a, b| a.cpu_seconds.total_cmp(&b.cpu_seconds))
-                .cloned()
-        });
+            .unwrap_or_default();
         Self {
-            seed_best,
-            chain_matching,
+            report_method_best,
+            matching,
             tip_models: methods
                 .iter()
-                .filter_map(|&m| Some((m, model::fit(rows, m, 20)?)))
+                .filter_map(|&m| Some((m, fit(rows, m, 20)?)))
                 .collect(),
             energy_models: methods
                 .iter()
-                .filter_map(|&m| Some((m, model::fit(&energy, m, 20)?)))
+                .filter_map(|&m| Some((m, fit(&energy, m, 20)?)))
                 .collect(),
             boundaries: methods
                 .iter()
@@ -115,32 +97,32 @@ impl Findings {
 
     /// The findings as Markdown, with the reference's own error estimate first.
     pub fn markdown(&self, reference: &Reference, command: &str) -> String {
-        let mut s = String::new();
-        let _ = writeln!(s, "# Study findings\n\nMade by `{command}`.\n");
-        let _ = writeln!(
-            s,
-            "Reference: {}. Estimated error of the reference tip: {:.1e} from N, {:.1e} from k; tip errors below {:.1e} are not resolved.\n",
+        let mut s = format!("# Study findings\n\nMade by `{command}`.\n\n");
+        s += &format!(
+            "Reference: {}. Estimated error of the reference tip: {:.1e} from N, {:.1e} from k; tip errors below {:.1e} are not resolved.\n\n",
             reference.description,
             reference.error_in_h,
             reference.error_in_k,
             reference.error_estimate()
         );
-        let _ = writeln!(
-            s,
-            "## Convergence in h (least-squares fit over N ≥ 20, smallest stable k)\n"
-        );
-        let _ = writeln!(
-            s,
-            "| method | tip error ≈ C h^p | energy deviation ≈ C h^p |\n|---|---|---|"
+        s += &self.convergence_section();
+        s += &self.stability_section();
+        s += &self.against_report_method_section();
+        s += &self.report_accuracy_section();
+        s
+    }
+
+    /// Fitted orders in h, for the tip error and the energy deviation.
+    fn convergence_section(&self) -> String {
+        let mut s = String::from(
+            "## Convergence in h (least-squares fit over N ≥ 20, smallest stable k)\n\n| method | tip error ≈ C h^p | energy deviation ≈ C h^p |\n|---|---|---|\n",
         );
         for (m, tip) in &self.tip_models {
             let energy = self
                 .energy_models
                 .iter()
                 .find(|(e, _)| e == m)
-                .map(|(_, e)| *e);
-            let e = energy
-                .map(|e| {
+                .map(|(_, e)| {
                     let note = if e.order < 0.5 {
                         " (not an h-error: set by k)"
                     } else {
@@ -149,11 +131,19 @@ impl Findings {
                     format!("{:.3e} h^{:.2}{note}", e.constant, e.order)
                 })
                 .unwrap_or_default();
-            let _ = writeln!(s, "| {m} | {:.3e} h^{:.2} | {e} |", tip.constant, tip.order);
+            let _ = writeln!(
+                s,
+                "| {m} | {:.3e} h^{:.2} | {energy} |",
+                tip.constant, tip.order
+            );
         }
-        let _ = writeln!(
-            s,
-            "\n## Stability: largest stable k against N (geometric mean of the last ok and first diverged k)\n"
+        s
+    }
+
+    /// The measured stability boundary of each method, with its Courant number.
+    fn stability_section(&self) -> String {
+        let mut s = String::from(
+            "\n## Stability: largest stable k against N (geometric mean of the last ok and first diverged k)\n\n",
         );
         for (m, boundary) in &self.boundaries {
             if boundary.is_empty() {
@@ -162,46 +152,87 @@ impl Findings {
             }
             let points: Vec<String> = boundary
                 .iter()
-                .map(|(n, k)| {
-                    format!(
-                        "N = {n}: k ≈ {k:.1e} (C = k·N·sqrt(1.5) ≈ {:.2})",
-                        k * n * 1.5f64.sqrt()
-                    )
+                .map(|&(n, k)| {
+                    let c = Descriptor::courant_of(n, k);
+                    format!("N = {n}: k ≈ {k:.1e} (C = k·N·sqrt(F_max) ≈ {c:.2})")
                 })
                 .collect();
             let _ = writeln!(s, "- {m}: {}", points.join("; "));
         }
-        if let (Some(seed), Some(chain)) = (&self.seed_best, &self.chain_matching) {
+        s
+    }
+
+    /// What every other method costs to reach the report's method's best tip error.
+    fn against_report_method_section(&self) -> String {
+        let Some(best) = &self.report_method_best else {
+            return String::new();
+        };
+        let mut s = String::new();
+        for other in &self.matching {
             let _ = writeln!(
                 s,
-                "\n## Chain against seed\n\nThe seed scheme's best tip error on the grid, {:.2e}, costs it {:.2e} CPU s at the least (N = {}, k = {:.3e}). The chain reaches it (tip error {:.2e}) with N = {}, k = {:.3e} in {:.2e} CPU s: **{:.0}× less CPU**.",
-                seed.tip_error.unwrap_or(f64::NAN),
-                seed.cpu_seconds,
-                seed.segments,
-                seed.dt,
-                chain.tip_error.unwrap_or(f64::NAN),
-                chain.segments,
-                chain.dt,
-                chain.cpu_seconds,
-                seed.cpu_seconds / chain.cpu_seconds.max(1e-9)
-            );
-        }
-        if let (Some(report), Some(best)) = (&self.report_run, &self.cheapest) {
-            let _ = writeln!(
-                s,
-                "\n## The report's accuracy for less\n\nThe report's run (seed, N = 100, k = 1e-5): tip error {:.2e}, energy deviation {:.2e}, {:.3} CPU s.\nThe cheapest run at least as accurate in both: {} N = {}, k = {:.3e}: tip error {:.2e}, energy deviation {:.2e}, {:.2e} CPU s, **{:.0}× less CPU**.",
-                report.tip_error.unwrap_or(f64::NAN),
-                report.energy_deviation.unwrap_or(f64::NAN),
-                report.cpu_seconds,
+                "\n## {} against {}\n\nThe {} method's best tip error on the grid, {:.2e}, costs it {:.2e} CPU s at the least (N = {}, k = {:.3e}). The {} method reaches it (tip error {:.2e}) with N = {}, k = {:.3e} in {:.2e} CPU s: **{:.0}× less CPU**.",
+                other.method,
                 best.method,
+                best.method,
+                best.tip_error.unwrap_or(f64::NAN),
+                best.cpu_seconds,
                 best.segments,
                 best.dt,
-                best.tip_error.unwrap_or(f64::NAN),
-                best.energy_deviation.unwrap_or(f64::NAN),
-                best.cpu_seconds,
-                report.cpu_seconds / best.cpu_seconds.max(1e-9)
+                other.method,
+                other.tip_error.unwrap_or(f64::NAN),
+                other.segments,
+                other.dt,
+                other.cpu_seconds,
+                best.cpu_seconds / other.cpu_seconds.max(1e-9)
             );
         }
         s
     }
+
+    /// The report's run against the cheapest run at least as accurate.
+    fn report_accuracy_section(&self) -> String {
+        let (Some(report), Some(best)) = (&self.report_run, &self.cheapest) else {
+            return String::new();
+        };
+        format!(
+            "\n## The report's accuracy for less\n\nThe report's run ({}, N = {}, k = {:e}): tip error {:.2e}, energy deviation {:.2e}, {:.3} CPU s.\nThe cheapest run at least as accurate in both: {} N = {}, k = {:.3e}: tip error {:.2e}, energy deviation {:.2e}, {:.2e} CPU s, **{:.0}× less CPU**.\n",
+            REPORT.method,
+            REPORT.segments,
+            REPORT.dt,
+            report.tip_error.unwrap_or(f64::NAN),
+            report.energy_deviation.unwrap_or(f64::NAN),
+            report.cpu_seconds,
+            best.method,
+            best.segments,
+            best.dt,
+            best.tip_error.unwrap_or(f64::NAN),
+            best.energy_deviation.unwrap_or(f64::NAN),
+            best.cpu_seconds,
+            report.cpu_seconds / best.cpu_seconds.max(1e-9)
+        )
+    }
+}
+
+/// The ok runs of `method`.
+fn ok_runs(rows: &[Row], method: MethodKind) -> impl Iterator<Item = &Row> {
+    rows.iter()
+        .filter(move |r| r.method == method && r.status == Status::Ok)
+}
+
+/// The cheapest run of `method` with a tip error at most `target`.
+fn cheapest_within(rows: &[Row], method: MethodKind, target: f64) -> Option<Row> {
+    ok_runs(rows, method)
+        .filter(|r| r.tip_error.is_some_and(|e| e <= target))
+        .min_by(|a, b| a.cpu_seconds.total_cmp(&b.cpu_seconds))
+        .cloned()
+}
+
+/// The cheapest run of `method` within 10 % of its smallest tip error on the grid (time steps
+/// change a first-order method's error by less than that, so those runs count as reaching it).
+fn best_of(rows: &[Row], method: MethodKind) -> Option<Row> {
+    let best = ok_runs(rows, method)
+        .filter_map(|r| r.tip_error)
+        .min_by(f64::total_cmp)?;
+    cheapest_within(rows, method, best * 1.1)
 }

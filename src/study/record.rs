@@ -1,8 +1,9 @@
 //! Puts a study's chart data into a Rerun recording: the work–precision points, the
 //! stability map and the findings, so that a `.rrd` carries the study.
 
-use super::{Outcome, Status};
-use crate::method::MethodKind;
+use super::Outcome;
+use super::grid::Status;
+use crate::methods::MethodKind;
 
 /// Logs the study's points (static: a study has no time axis) under `study/…`.
 pub fn log(rec: &rerun::RecordingStream, outcome: &Outcome) -> rerun::RecordingStreamResult<()> {
@@ -34,11 +35,8 @@ pub fn log(rec: &rerun::RecordingStream, outcome: &Outcome) -> rerun::RecordingS
         let (points, colors): (Vec<[f32; 2]>, Vec<rerun::Color>) = mine
             .iter()
             .map(|r| {
-                let color = match r.status {
-                    Status::Ok => rerun::Color::from_rgb(30, 150, 60),
-                    Status::Diverged { .. } => rerun::Color::from_rgb(210, 40, 40),
-                    Status::Refused { .. } => rerun::Color::from_rgb(120, 120, 120),
-                };
+                let [red, green, blue] = r.status.rgb();
+                let color = rerun::Color::from_rgb(red, green, blue);
                 (
                     [(r.segments as f64).log10() as f32, -(r.dt.log10() as f32)],
                     color,

@@ -1,11 +1,14 @@
 //! Helpers shared by the physics tests: run a method and sample it.
+//!
+//! The physics they check against is in `docs/physics.md`, "What the tests check".
 #![allow(dead_code)]
 
 pub mod cli;
 
-use rope::method::{Method, MethodKind};
-use rope::scene::Scene;
-use rope::simulate::{self, Frame, Options, Outcome};
+use rope::methods::error_model::ErrorModel;
+use rope::methods::{Method, MethodKind};
+use rope::model::Scene;
+use rope::run::simulate::{self, Frame, Options, Outcome};
 use std::ops::ControlFlow;
 
 /// Runs `kind` on `scene` to `duration`, keeping every frame logged at `log_rate`.
@@ -38,29 +41,18 @@ pub fn run_to(kind: MethodKind, scene: Scene, segments: usize, dt: f64, duration
     let mut method: Box<dyn Method> = kind
         .build(&scene, segments, dt)
         .expect("valid configuration");
-    simulate::run(
-        method.as_mut(),
-        &Options {
-            duration,
-            log_rate: 0.0,
-        },
-        None,
-        |_| ControlFlow::Continue(()),
-    )
+    simulate::run_to(method.as_mut(), duration)
 }
 
 /// Least-squares slope of log(error) against log(h): the measured order of convergence.
 pub fn fitted_order(segments: &[usize], errors: &[f64]) -> f64 {
-    let xs: Vec<f64> = segments.iter().map(|&n| (1.0 / n as f64).ln()).collect();
-    let ys: Vec<f64> = errors.iter().map(|e| e.ln()).collect();
-    let n = xs.len() as f64;
-    let (mx, my) = (xs.iter().sum::<f64>() / n, ys.iter().sum::<f64>() / n);
-    let sxy: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
-    let sxx: f64 = xs.iter().map(|x| (x - mx) * (x - mx)).sum();
-    sxy / sxx
+    let points = segments.iter().copied().zip(errors.iter().copied());
+    ErrorModel::fit(points)
+        .expect("two segment counts or more")
+        .order
 }
 
-/// The free-fall residual of physics.md: the tip's displacement across the initial line,
+/// The free-fall residual of `docs/physics.md`: the tip's displacement across the initial line,
 /// −sin φ0 · x + cos φ0 · y, minus cos φ0 · t²/2 (its initial value is 0).
 pub fn free_fall_residual(angle_deg: f64, frame: &Frame) -> f64 {
     let phi0 = angle_deg.to_radians();
@@ -71,7 +63,7 @@ pub fn free_fall_residual(angle_deg: f64, frame: &Frame) -> f64 {
 
 /// Measured angular frequency of the `mode` scene from the tip's zero crossings.
 pub fn mode_angular_frequency(kind: MethodKind, number: u32, segments: usize, dt: f64) -> f64 {
-    let omega = rope::bessel::mode_frequency(number);
+    let omega = rope::model::bessel::mode_frequency(number);
     let periods = 3.0;
     let (outcome, frames) = run_frames(
         kind,
@@ -85,8 +77,9 @@ pub fn mode_angular_frequency(kind: MethodKind, number: u32, segments: usize, dt
         400.0,
     );
     assert!(outcome.diverged.is_none(), "{:?}", outcome.diverged);
-    let period =
-        rope::analysis::period_from_zero_crossings(frames.iter().map(|f| (f.time, f.tip().x)))
-            .expect("at least one full period");
+    let period = rope::model::analysis::period_from_zero_crossings(
+        frames.iter().map(|f| (f.time, f.tip().x)),
+    )
+    .expect("at least one full period");
     std::f64::consts::TAU / period
 }

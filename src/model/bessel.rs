@@ -1,31 +1,15 @@
-//! Bessel functions J0 and J1 and the zeros of J0: the small-oscillation modes of a hanging
-//! string (D. Bernoulli) are `J0(2 ω sqrt(1 − s))` with `ω = j_{0,n} / 2`.
-
-/// J_ν(x) for ν = 0 or 1 by its power series; accurate to ~1e-12 for |x| ≤ 12, which covers
-/// the first four modes of the hanging string (arguments up to 2 j_{0,4} / 2 ≈ 11.8).
-fn series(nu: u32, x: f64) -> f64 {
-    let q = -(x * x) / 4.0;
-    let mut term = if nu == 0 { 1.0 } else { x / 2.0 };
-    let mut sum = term;
-    for k in 1..80 {
-        let k = f64::from(k);
-        term *= q / (k * (k + f64::from(nu)));
-        sum += term;
-        if term.abs() < 1e-17 * sum.abs().max(1e-300) {
-            break;
-        }
-    }
-    sum
-}
+//! The small-oscillation modes of a hanging string (D. Bernoulli): the n-th mode's sideways
+//! displacement is `J0(2 ω_n sqrt(1 − s))` with `ω_n = j_{0,n} / 2`, j_{0,n} the n-th zero of
+//! the Bessel function J0. J0 and J1 come from `libm` (valid for every argument).
 
 /// Bessel function of the first kind, order 0.
 pub fn j0(x: f64) -> f64 {
-    series(0, x)
+    libm::j0(x)
 }
 
 /// Bessel function of the first kind, order 1 (J0' = −J1).
 pub fn j1(x: f64) -> f64 {
-    series(1, x)
+    libm::j1(x)
 }
 
 /// The n-th positive zero of J0 (n ≥ 1), by Newton's method from McMahon's estimate.

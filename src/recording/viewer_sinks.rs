@@ -7,8 +7,13 @@
 //! that come and go, [`ViewerSink`] puts a thread and a bounded queue in front of it: once the
 //! viewer is gone (disconnected, never answered, or took nothing for [`STALL`]) every further
 //! message is dropped at once, and [`ViewerLink`] says why, so the caller can stop or go on.
+//!
+//! The reason a viewer is gone depends only on what happened, never on which thread saw it
+//! first: a viewer that never accepted the connection is "no viewer answered at …", however
+//! that showed (refused, grace over, a flush that timed out, a dropped connection attempt);
+//! one that had accepted it went away, or took no data.
 
-use crate::output::OutputError;
+use super::error::OutputError;
 use crossbeam_channel::{Receiver, RecvTimeoutError, SendTimeoutError, Sender};
 use rerun::log::{ChunkBatcherConfig, LogMsg};
 use rerun::sink::{GrpcSink, GrpcSinkConnectionState, LogSink, SinkFlushError};
@@ -21,8 +26,14 @@ pub const CONNECT_GRACE: Duration = Duration::from_secs(5);
 /// How long a connected viewer may take no data at all before it counts as gone.
 pub const STALL: Duration = Duration::from_secs(5);
 
-/// The longest any flush waits for the viewer.
-pub const FLUSH_CAP: Duration = Duration::from_secs(5);
+/// The longest any flush waits for the viewer: less than the recording's own flush timeout
+/// (5 s), so that a viewer that cannot take the data is always reported as such, never as
+/// the recording's timeout.
+pub const FLUSH_CAP: Duration = Duration::from_secs(4);
+
+/// How much sooner than the caller the forwarding thread gives up on Rerun's client, so that
+/// its answer (and its reason) always arrives while the caller still waits.
+const FLUSH_MARGIN: Duration = Duration::from_secs(1);
 
 /// Messages queued in front of Rerun's own queue: room for a viewer's hiccups.
 const QUEUE: usize = 1024;
@@ -62,6 +73,15 @@ impl ViewerLink {
         }
     }
 
+    /// A link to a viewer that refused the connection: lost from the start.
+    pub fn refused(url: &str) -> Self {
+        let link = Self::new(url);
+        *link.state() = State::Lost(format!(
+            "no viewer answered at {url} (the connection was refused)"
+        ));
+        link
+    }
+
     /// The viewer's address.
     pub fn url(&self) -> &str {
         &self.shared.url
@@ -91,6 +111,26 @@ impl ViewerLink {
         )
     }
 
+    /// Why a connected viewer that a flush waited `wait` for counts as gone.
+    fn did_not_take_the_data(&self, wait: Duration) -> String {
+        format!(
+            "the viewer at {} did not take the data within {} s",
+            self.url(),
+            wait.as_secs_f64()
+        )
+    }
+
+    /// The viewer is gone: if it had accepted the connection, for `reason`; if it never
+    /// had, because no viewer answered (whatever showed it first).
+    fn lose_with(&self, reason: impl FnOnce() -> String) {
+        let mut state = self.state();
+        *state = match &*state {
+            State::Lost(_) => return,
+            State::Connecting { .. } => State::Lost(self.no_answer()),
+            State::Connected => State::Lost(reason()),
+        };
+    }
+
     /// Whether the viewer has accepted the connection (and is not lost since).
     pub fn connected(&self) -> bool {
         *self.state() == State::Connected
@@ -101,13 +141,6 @@ impl ViewerLink {
             .state
             .lock()
             .unwrap_or_else(PoisonError::into_inner)
-    }
-
-    fn lose(&self, reason: String) {
-        let mut state = self.state();
-        if !matches!(*state, State::Lost(_)) {
-            *state = State::Lost(reason);
-        }
     }
 
     /// Takes in what Rerun's client reports.
@@ -121,13 +154,10 @@ impl ViewerLink {
                 }
             }
             GrpcSinkConnectionState::Disconnected(Ok(())) => {
-                self.lose(format!(
-                    "the viewer at {} closed the connection",
-                    self.url()
-                ));
+                self.lose_with(|| format!("the viewer at {} closed the connection", self.url()));
             }
             GrpcSinkConnectionState::Disconnected(Err(err)) => {
-                self.lose(format!("the viewer at {} went away: {err}", self.url()));
+                self.lose_with(|| format!("the viewer at {} went away: {err}", self.url()));
             }
         }
     }
@@ -135,7 +165,8 @@ impl ViewerLink {
 
 enum Command {
     Message(LogMsg),
-    Flush(Sender<Result<(), String>>),
+    /// Flush Rerun's client, waiting for it at most this long; answer when done.
+    Flush(Duration, Sender<()>),
 }
 
 /// A [`LogSink`] that sends to a viewer over gRPC and never blocks for longer than
@@ -158,6 +189,11 @@ impl ViewerSink {
             Ok(_) => return Err(bad_url("not a `/proxy` endpoint".to_owned())),
             Err(err) => return Err(bad_url(err.to_string())),
         };
+        if probe(&uri.origin) == Probe::Refused {
+            return Err(OutputError::NoViewerListening {
+                url: url.to_owned(),
+            });
+        }
         let link = ViewerLink::new(url);
         let (commands, queue) = crossbeam_channel::bounded(QUEUE);
         let (done, finished) = crossbeam_channel::bounded(1);
@@ -182,6 +218,45 @@ impl ViewerSink {
     }
 }
 
+/// What a plain TCP connection to a viewer's address found.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Probe {
+    /// Something listens there (a viewer, or one still coming up).
+    Open,
+    /// Every address refused the connection: nothing listens there.
+    Refused,
+    /// Neither could be told (a name that does not resolve, a network that does not
+    /// answer); Rerun's client finds out, within [`CONNECT_GRACE`].
+    Unknown,
+}
+
+/// Whether anything listens at `origin`: a refused connection is known at once, so a run
+/// need not wait out the connect grace to learn that no viewer is there.
+fn probe(origin: &rerun::external::re_uri::Origin) -> Probe {
+    use std::net::ToSocketAddrs as _;
+    let host = origin.format_host();
+    let host = host.trim_start_matches('[').trim_end_matches(']');
+    let Ok(addrs) = (host, origin.port).to_socket_addrs() else {
+        return Probe::Unknown;
+    };
+    let mut refused = false;
+    for addr in addrs {
+        match std::net::TcpStream::connect_timeout(&addr, PROBE_TIMEOUT) {
+            Ok(_) => return Probe::Open,
+            Err(err) if err.kind() == std::io::ErrorKind::ConnectionRefused => refused = true,
+            Err(_) => return Probe::Unknown,
+        }
+    }
+    if refused {
+        Probe::Refused
+    } else {
+        Probe::Unknown
+    }
+}
+
+/// How long the probe waits for an answer before leaving it to Rerun's client.
+const PROBE_TIMEOUT: Duration = Duration::from_secs(1);
+
 /// The forwarding thread: hands the queue to Rerun's client while the viewer is there.
 fn forward(sink: GrpcSink, queue: &Receiver<Command>, link: &ViewerLink) {
     loop {
@@ -193,15 +268,15 @@ fn forward(sink: GrpcSink, queue: &Receiver<Command>, link: &ViewerLink) {
                     sink.send(msg);
                 }
             }
-            Ok(Command::Flush(reply)) => {
-                let result = match link.lost() {
-                    Some(_) => Ok(()),
-                    None => sink.flush_blocking(FLUSH_CAP).map_err(|err| {
-                        format!("the viewer at {} did not take the data: {err}", link.url())
-                    }),
-                };
-                link.observe(sink.status());
-                reply.send(result).ok();
+            Ok(Command::Flush(wait, reply)) => {
+                if link.lost().is_none() {
+                    let result = sink.flush_blocking(wait);
+                    link.observe(sink.status());
+                    if result.is_err() {
+                        link.lose_with(|| link.did_not_take_the_data(wait));
+                    }
+                }
+                reply.send(()).ok();
             }
             Err(RecvTimeoutError::Timeout) => {}
             Err(RecvTimeoutError::Disconnected) => break,
@@ -230,16 +305,13 @@ impl LogSink for ViewerSink {
         match commands.send_timeout(Command::Message(msg), patience) {
             Ok(()) => {}
             Err(SendTimeoutError::Timeout(_)) => {
-                let reason = if self.link.connected() {
+                self.link.lose_with(|| {
                     format!(
                         "the viewer at {} took no data for {} s",
                         self.link.url(),
                         STALL.as_secs()
                     )
-                } else {
-                    self.link.no_answer()
-                };
-                self.link.lose(reason);
+                });
             }
             Err(SendTimeoutError::Disconnected(_)) => {}
         }
@@ -255,24 +327,21 @@ impl LogSink for ViewerSink {
             return Ok(());
         }
         let timeout = timeout.min(FLUSH_CAP);
+        let wait = timeout.saturating_sub(FLUSH_MARGIN);
         let started = Instant::now();
         let (reply, answer) = crossbeam_channel::bounded(1);
         let answered = commands
-            .send_timeout(Command::Flush(reply), timeout)
+            .send_timeout(Command::Flush(wait, reply), timeout)
             .ok()
             .and_then(|()| {
                 answer
-                    .recv_timeout(timeout.saturating_sub(started.elapsed()) + POLL)
+                    .recv_timeout(timeout.saturating_sub(started.elapsed()))
                     .ok()
             });
-        match answered {
-            Some(Ok(())) => {}
-            Some(Err(reason)) => self.link.lose(reason),
-            None => self.link.lose(format!(
-                "the viewer at {} did not take the data within {} s",
-                self.link.url(),
-                timeout.as_secs_f64()
-            )),
+        if answered.is_none() {
+            // The forwarding thread is stuck handing over messages the viewer does not take.
+            self.link
+                .lose_with(|| self.link.did_not_take_the_data(wait));
         }
         Ok(())
     }

@@ -15,11 +15,40 @@
 //! RK4 in (φ, φ̇). No division by the tension anywhere, so it starts from the horizontal;
 //! inextensibility is exact by construction; the rods converge to the continuum at O(h²).
 
+use super::error_model::ErrorModel;
+use super::method::{self, Descriptor, Method, Observation};
 use crate::error::{ConfigError, Diverged};
-use crate::geometry::{self, Energy};
-use crate::method::{self, Method, MethodKind, Observation};
-use crate::scene::Scene;
+use crate::model::Scene;
+use crate::model::geometry::{self, Energy};
 use nalgebra::{Matrix2, Vector2};
+
+/// Substep bounds: k_sub ≤ C_F h / sqrt(F_max) (measured stable up to C_F ≈ 0.6 at N = 100)
+/// and k_sub |φ̇|_max ≤ C_ω.
+const SUBSTEP_COURANT: f64 = 0.4;
+const SUBSTEP_ROTATION: f64 = 0.02;
+/// A state needing more substeps than this per step is treated as blown up.
+const MAX_SUBSTEPS: u64 = 100_000;
+
+/// What the chain says of itself (see [`Descriptor`]).
+pub const DESCRIPTOR: Descriptor = Descriptor {
+    name: "chain",
+    // One rod is a rigid pendulum, two already bend.
+    min_segments: 2,
+    // Past this the chain still runs (it substeps to stay stable) but pays for the substeps.
+    courant: SUBSTEP_COURANT,
+    limit_meaning: "substeps start: k = C h / sqrt(F_max)",
+    // 0.3 of the limit (5e-4 at N = 100): RK4's energy loss stays below 1e-6 over 10 time
+    // units there (tests/chain_physics.rs); the state adds substeps where the whip needs them.
+    default_step_fraction: 0.3,
+    refuses_unstable_step: false,
+    ns_per_segment_step: 170.0,
+    error_model: ErrorModel {
+        constant: 0.079,
+        order: 1.97,
+    },
+    colours: ([110, 170, 240], [10, 40, 140]),
+    build: |scene, segments, dt| Ok(Box::new(Chain::new(scene, segments, dt)?)),
+};
 
 /// Scratch of the joint-force solve, reused every evaluation.
 #[derive(Clone, Debug)]
@@ -135,28 +164,10 @@ pub struct Chain {
 }
 
 impl Chain {
-    /// Fewest rods: one rod is a rigid pendulum, two already bend.
-    pub const MIN_SEGMENTS: usize = 2;
-
-    /// Tension of a swing from rest (support tension ≲ 5/4, report), for the default step.
-    const TENSION_MAX: f64 = 1.5;
-    /// Substep bounds: k_sub ≤ C_F h / sqrt(F_max) (measured stable up to C_F ≈ 0.6 at
-    /// N = 100) and k_sub |φ̇|_max ≤ C_ω.
-    const SUBSTEP_COURANT: f64 = 0.4;
-    const SUBSTEP_ROTATION: f64 = 0.02;
-    /// A state needing more substeps than this per step is treated as blown up.
-    const MAX_SUBSTEPS: u64 = 100_000;
-
     /// The chain at rest in `scene`.
     pub fn new(scene: &Scene, segments: usize, dt: f64) -> Result<Self, ConfigError> {
         scene.validate()?;
-        if segments < Self::MIN_SEGMENTS {
-            return Err(ConfigError::TooFewSegments {
-                method: "chain",
-                segments,
-                min: Self::MIN_SEGMENTS,
-            });
-        }
+        method::validate_segments(&DESCRIPTOR, segments)?;
         method::validate_dt(dt)?;
         let n = segments;
         let mut chain = Self {
@@ -176,19 +187,6 @@ impl Chain {
         Ok(chain)
     }
 
-    /// Largest step taken without substeps in a swing from rest: above it the chain still
-    /// runs (it substeps to stay stable) but pays for the substeps.
-    pub fn stability_limit(segments: usize) -> f64 {
-        Self::SUBSTEP_COURANT / (segments as f64 * Self::TENSION_MAX.sqrt())
-    }
-
-    /// Default (outer) time step: 0.3 of the limit rounded down to 1, 2 or 5 × 10^k (5e-4 at
-    /// N = 100), where RK4's energy loss stays below 1e-6 over 10 time units
-    /// (tests/chain_physics.rs); the state adds substeps where the whip needs them.
-    pub fn default_dt(segments: usize) -> f64 {
-        method::round_down_nicely(0.3 * Self::stability_limit(segments))
-    }
-
     /// Accelerations and forces at the current state; returns the largest joint force and
     /// the largest |φ̇|.
     fn evaluate_now(&mut self) -> (f64, f64) {
@@ -204,11 +202,11 @@ impl Chain {
     /// must each be resolved (k_sub ≤ C_F h / sqrt(F) and k_sub ≤ C_ω / |φ̇|).
     fn substeps(&self, force: f64, rate: f64) -> u64 {
         let h = 1.0 / self.phi.len() as f64;
-        let wave = self.k * force.max(1e-12).sqrt() / (Self::SUBSTEP_COURANT * h);
-        let spin = self.k * rate / Self::SUBSTEP_ROTATION;
+        let wave = self.k * force.max(1e-12).sqrt() / (SUBSTEP_COURANT * h);
+        let spin = self.k * rate / SUBSTEP_ROTATION;
         let needed = wave.max(spin).ceil();
         if needed.is_finite() {
-            (needed as u64).clamp(1, Self::MAX_SUBSTEPS)
+            (needed as u64).clamp(1, MAX_SUBSTEPS)
         } else {
             1 // a non-finite state: the step reports it
         }
@@ -243,8 +241,8 @@ impl Chain {
 }
 
 impl Method for Chain {
-    fn kind(&self) -> MethodKind {
-        MethodKind::Chain
+    fn descriptor(&self) -> &'static Descriptor {
+        &DESCRIPTOR
     }
 
     fn segments(&self) -> usize {
@@ -253,10 +251,6 @@ impl Method for Chain {
 
     fn dt(&self) -> f64 {
         self.k
-    }
-
-    fn time(&self) -> f64 {
-        self.steps as f64 * self.k
     }
 
     fn steps(&self) -> u64 {
@@ -280,16 +274,13 @@ impl Method for Chain {
         }
         let check: f64 = self.phi.iter().chain(&self.omega).sum();
         if !(check.is_finite() && self.support_tension.is_finite()) {
-            return Err(Diverged {
-                step: self.steps + 1,
-                time: (self.steps + 1) as f64 * k,
-                reason: method::non_finite_reason(
-                    MethodKind::Chain,
-                    n,
-                    k,
-                    "the angle or the joint force",
-                ),
-            });
+            return Err(method::non_finite(
+                &DESCRIPTOR,
+                n,
+                k,
+                self.steps,
+                "the angle or the joint force",
+            ));
         }
         self.steps += 1;
         Ok(())

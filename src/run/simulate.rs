@@ -3,8 +3,8 @@
 //! caller's business (the logger streams it; studies and tests read it).
 
 use crate::error::Diverged;
-use crate::geometry::{self, Energy, Point};
-use crate::method::{Method, Observation};
+use crate::methods::{Method, Observation, stability_hint};
+use crate::model::geometry::{self, Energy, Point};
 use nalgebra::Vector2;
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -208,17 +208,26 @@ pub fn run(
     outcome
 }
 
+/// Runs `method` to `duration` with no frames and no way to stop it early: the bare
+/// simulation, for measurements.
+pub fn run_to(method: &mut dyn Method, duration: f64) -> Outcome {
+    let options = Options {
+        duration,
+        log_rate: 0.0,
+    };
+    run(method, &options, None, |_| ControlFlow::Continue(()))
+}
+
 /// Updates the energy statistics and says whether the run has blown up.
 fn watch(method: &dyn Method, energy_reference: f64, outcome: &mut Outcome) -> Option<Diverged> {
     let step = method.steps();
     let energy = method.energy().total();
     let deviation = (energy - energy_reference).abs();
     let support = method.support_tension();
-    let limit = method.kind().stability_limit(method.segments());
     let hint = || {
-        let dt = method.dt();
-        if dt > limit {
-            format!(" (k = {dt:.3e} exceeds the estimated limit {limit:.3e})")
+        let (d, dt) = (method.descriptor(), method.dt());
+        if dt > d.stability_limit(method.segments()) {
+            format!(" ({})", stability_hint(d, method.segments(), dt))
         } else {
             String::new()
         }

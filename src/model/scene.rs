@@ -1,6 +1,6 @@
 //! Scenes: the initial states a run starts from, each a small function of the segment count.
 
-use crate::bessel;
+use super::bessel;
 use crate::error::ConfigError;
 use std::f64::consts::FRAC_PI_2;
 
@@ -69,6 +69,19 @@ impl Scene {
                         FRAC_PI_2 - dx_ds
                     })
                     .collect()
+            }
+        }
+    }
+}
+
+/// The scene in words, as every output names it: "release at 30°",
+/// "mode 1 (tip amplitude 0.05)".
+impl std::fmt::Display for Scene {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            Self::Release { angle_deg } => write!(f, "release at {angle_deg}°"),
+            Self::Mode { number, amplitude } => {
+                write!(f, "mode {number} (tip amplitude {amplitude})")
             }
         }
     }

@@ -6,12 +6,14 @@
 //! silently wins over `--spawn`), binds its server to 0.0.0.0, and has no way to learn that
 //! a viewer has gone.
 
-use crate::viewer_link::{ServedSink, ViewerLink, ViewerSink};
+use super::error::OutputError;
+use super::viewer_sinks::{ServedSink, ViewerLink, ViewerSink};
 use rerun::RecordingStream;
 use rerun::blueprint::Blueprint;
 use rerun::sink::LogSink;
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
 use std::path::PathBuf;
+use std::time::{Duration, Instant};
 
 /// Rerun's default port, for `--connect` and `--serve-grpc`.
 pub const DEFAULT_PORT: u16 = 9876;
@@ -64,38 +66,6 @@ pub struct OutputArgs {
     pub stdout: bool,
 }
 
-/// What could not be opened, and what would work.
-#[derive(Debug, thiserror::Error)]
-pub enum OutputError {
-    #[error(
-        "the Rerun viewer is not installed: install it with `pip install rerun-sdk==0.36.3`, or save the recording with --save FILE.rrd and open it later"
-    )]
-    ViewerNotInstalled,
-    #[error("could not start the Rerun viewer: {0}")]
-    Spawn(rerun::SpawnError),
-    #[error(
-        "connect = {url}: {reason}; expected rerun+http://HOST:PORT/proxy (the viewer prints its address)"
-    )]
-    ConnectUrl { url: String, reason: String },
-    #[error(
-        "serve-grpc = {addr}: cannot listen there ({source}); name a free port, e.g. --serve-grpc 127.0.0.1:9877"
-    )]
-    ServeAddress {
-        addr: SocketAddr,
-        source: std::io::Error,
-    },
-    #[error("save = {path}: cannot write there ({reason})")]
-    Save { path: PathBuf, reason: String },
-    #[error(
-        "stdout is a terminal: a recording is binary; pipe it into a viewer (`rope run --stdout | rerun -`) or use --save FILE.rrd"
-    )]
-    StdoutIsTerminal,
-    #[error("could not open the recording: {0}")]
-    Recording(#[from] rerun::RecordingStreamError),
-    #[error("could not start a thread: {0}")]
-    Thread(std::io::Error),
-}
-
 /// An open recording and what is attached to it.
 pub struct Output {
     pub rec: RecordingStream,
@@ -115,42 +85,14 @@ impl OutputArgs {
         application_id: &'static str,
         blueprint: Blueprint,
     ) -> Result<Output, OutputError> {
-        let mut sinks: Vec<Box<dyn LogSink>> = Vec::new();
-        let mut viewer = None;
+        let mut sinks = self.file_sinks()?;
+        let survives_viewer_loss = self.save.is_some() || self.serve_grpc.is_some();
+        let viewer = self.viewer(survives_viewer_loss, &mut sinks)?;
         let mut serving = None;
-        if self.stdout {
-            if std::io::IsTerminal::is_terminal(&std::io::stdout()) {
-                return Err(OutputError::StdoutIsTerminal);
-            }
-            sinks.push(Box::new(rerun::sink::FileSink::stdout().map_err(
-                |err| OutputError::Save {
-                    path: "-".into(),
-                    reason: err.to_string(),
-                },
-            )?));
-        }
-        if let Some(path) = &self.save {
-            let sink = rerun::sink::FileSink::new(path).map_err(|err| OutputError::Save {
-                path: path.clone(),
-                reason: err.to_string(),
-            })?;
-            sinks.push(Box::new(sink));
-        }
-        let url = match (&self.connect, self.spawn || self.nothing_named()) {
-            (Some(url), _) => Some(url.clone()),
-            (None, true) => Some(spawn_viewer()?),
-            (None, false) => None,
-        };
-        if let Some(url) = url {
-            let sink = ViewerSink::connect(&url)?;
-            viewer = Some(sink.link());
-            sinks.push(Box::new(sink));
-        }
         if let Some(addr) = self.serve_grpc {
             sinks.push(Box::new(ServedSink::new(self.serve(addr)?)));
             serving = Some(format!("rerun+http://{addr}/proxy"));
         }
-        let survives_viewer_loss = self.save.is_some() || serving.is_some();
         let mut builder =
             rerun::RecordingStreamBuilder::new(application_id).with_blueprint(blueprint);
         if viewer.is_some() || serving.is_some() {
@@ -164,6 +106,56 @@ impl OutputArgs {
             serving,
             survives_viewer_loss,
         })
+    }
+
+    /// `--stdout` and `--save FILE`.
+    fn file_sinks(&self) -> Result<Vec<Box<dyn LogSink>>, OutputError> {
+        let mut sinks: Vec<Box<dyn LogSink>> = Vec::new();
+        if self.stdout {
+            if std::io::IsTerminal::is_terminal(&std::io::stdout()) {
+                return Err(OutputError::StdoutIsTerminal);
+            }
+            let sink = rerun::sink::FileSink::stdout().map_err(|err| OutputError::Save {
+                path: "-".into(),
+                reason: err.to_string(),
+            })?;
+            sinks.push(Box::new(sink));
+        }
+        if let Some(path) = &self.save {
+            let sink = rerun::sink::FileSink::new(path).map_err(|err| OutputError::Save {
+                path: path.clone(),
+                reason: err.to_string(),
+            })?;
+            sinks.push(Box::new(sink));
+        }
+        Ok(sinks)
+    }
+
+    /// `--connect URL`, or `--spawn` (also when nothing else is named): the viewer's sink
+    /// joins `sinks`, and its link is returned to watch. A viewer that refuses the connection
+    /// is an error, unless the recording is `kept` without it: then its link is lost from
+    /// the start, and the run goes on.
+    fn viewer(
+        &self,
+        kept: bool,
+        sinks: &mut Vec<Box<dyn LogSink>>,
+    ) -> Result<Option<ViewerLink>, OutputError> {
+        let url = match (&self.connect, self.spawn || self.nothing_named()) {
+            (Some(url), _) => url.clone(),
+            (None, true) => spawn_viewer()?,
+            (None, false) => return Ok(None),
+        };
+        match ViewerSink::connect(&url) {
+            Ok(sink) => {
+                let link = sink.link();
+                sinks.push(Box::new(sink));
+                Ok(Some(link))
+            }
+            Err(OutputError::NoViewerListening { url }) if kept => {
+                Ok(Some(ViewerLink::refused(&url)))
+            }
+            Err(err) => Err(err),
+        }
     }
 
     fn nothing_named(&self) -> bool {
@@ -180,7 +172,7 @@ impl OutputArgs {
             IpAddr::V4(ip) => ip.to_string(),
             IpAddr::V6(ip) => format!("[{ip}]"),
         };
-        rerun::grpc_server::GrpcServerSink::new(
+        let server = rerun::grpc_server::GrpcServerSink::new(
             &ip,
             addr.port(),
             rerun::ServerOptions {
@@ -192,7 +184,40 @@ impl OutputArgs {
         .map_err(|err| OutputError::ServeAddress {
             addr,
             source: std::io::Error::new(std::io::ErrorKind::InvalidInput, err),
-        })
+        })?;
+        wait_until_listening(addr).map_err(|source| OutputError::ServeAddress { addr, source })?;
+        Ok(server)
+    }
+}
+
+/// How long Rerun's server may take to start listening.
+const SERVER_START: Duration = Duration::from_secs(10);
+
+/// Waits until something listens at `addr` (Rerun's server binds on a thread of its own), so
+/// that "serving at …" is only said once a viewer can connect.
+fn wait_until_listening(addr: SocketAddr) -> std::io::Result<()> {
+    let mut target = addr;
+    if target.ip().is_unspecified() {
+        target.set_ip(match addr.ip() {
+            IpAddr::V4(_) => IpAddr::V4(Ipv4Addr::LOCALHOST),
+            IpAddr::V6(_) => IpAddr::V6(std::net::Ipv6Addr::LOCALHOST),
+        });
+    }
+    let started = Instant::now();
+    loop {
+        match std::net::TcpStream::connect_timeout(&target, Duration::from_secs(1)) {
+            Ok(_) => return Ok(()),
+            Err(err) if started.elapsed() > SERVER_START => {
+                return Err(std::io::Error::new(
+                    err.kind(),
+                    format!(
+                        "the server did not start listening within {} s ({err})",
+                        SERVER_START.as_secs()
+                    ),
+                ));
+            }
+            Err(_) => std::thread::sleep(Duration::from_millis(10)),
+        }
     }
 }
 

@@ -1,16 +1,19 @@
 //! Writes frames to a Rerun recording stream: the rope coloured by tension, the tension
-//! profile, energy and tip time series, the run's parameters, and a blueprint that lays them
-//! out. Knows nothing of the equations: it draws what a [`Frame`] holds.
+//! profile, energy and tip time series, and the run's parameters. Knows nothing of the
+//! equations: it draws what a [`Frame`] holds.
 
-use crate::color::tension_rgb;
-use crate::simulate::Frame;
+use super::colour::tension_colour;
+use super::error::RecordingError;
+use crate::model::Point;
+use crate::run::{Frame, FrameSink, RunPlan};
 use rerun::RecordingStream;
-use rerun::blueprint::{
-    Blueprint, ContainerLike, Horizontal, Spatial2DView, Tabs, TextDocumentView, TimeSeriesView,
-    Vertical,
-};
 use std::collections::VecDeque;
 use std::time::{Duration, Instant};
+
+/// How long the end of a run waits for the recording's destinations to take the last data.
+/// Longer than a viewer's own cap (`viewer_sinks::FLUSH_CAP`), so that a viewer that cannot
+/// take the data is reported by its link, with its own reason.
+const FLUSH_TIMEOUT: Duration = Duration::from_secs(5);
 
 /// Room for the time series of a batch of frames without reallocating.
 const BATCH_SERIES_CAPACITY: usize = 32;
@@ -81,39 +84,6 @@ const TRAIL_FRAMES: usize = 45;
 const ROPE_RADIUS: f32 = 0.006;
 /// Largest tension on the colour scale (the support tension of a swing from rest ≲ 5/4).
 const SCALE_MAX: f64 = 1.25;
-
-/// The viewer layout: rope and tension profile on the left, time series on the right.
-pub fn blueprint() -> Blueprint {
-    let rope = Spatial2DView::new("Rope (coloured by tension)").with_origin("rope");
-    let profile = Spatial2DView::new("Tension profile F(s), drawn upward").with_origin("tension");
-    let params = TextDocumentView::new("Parameters").with_origin(path::PARAMETERS);
-    let energy =
-        TimeSeriesView::new("Energy").with_contents([path::KINETIC, path::POTENTIAL, path::TOTAL]);
-    let deviation =
-        TimeSeriesView::new("Energy deviation (relative to step 10)").with_origin(path::DEVIATION);
-    let diagnostics = Tabs::new([
-        ContainerLike::from(
-            TimeSeriesView::new("Support tension F_0").with_origin(path::SUPPORT_TENSION),
-        ),
-        TimeSeriesView::new("Tip speed")
-            .with_origin(path::TIP_SPEED)
-            .into(),
-        TimeSeriesView::new("Tip acceleration")
-            .with_origin(path::TIP_ACCELERATION)
-            .into(),
-        params.into(),
-    ]);
-    Blueprint::new(
-        Horizontal::new([
-            rope.into(),
-            profile.into(),
-            Vertical::new([energy.into(), deviation.into(), diagnostics.into()]).into(),
-        ])
-        .with_column_shares([5.0, 2.0, 4.0]),
-    )
-    .with_auto_views(false)
-    .with_time_panel(rerun::blueprint::TimePanel::new().with_timeline(SIM_TIME))
-}
 
 /// The time columns of rows at `sim_time` seconds and `step` steps, both timelines.
 fn timelines(
@@ -193,28 +163,6 @@ impl RopeLogger {
         })
     }
 
-    /// Starts a run at the current end of the timelines: logs its parameters there, and
-    /// starts a fresh trail.
-    pub fn begin_run(&mut self, parameters_markdown: &str) -> rerun::RecordingStreamResult<()> {
-        self.trail.clear();
-        let ones = std::iter::once(1);
-        self.rec.send_columns(
-            path::PARAMETERS,
-            timelines([self.time_offset], [self.step_offset as i64]),
-            rerun::TextDocument::update_fields()
-                .with_text(parameters_markdown)
-                .with_media_type(rerun::MediaType::markdown())
-                .columns(ones)?,
-        )
-    }
-
-    /// Ends a run that reached `time` after `steps`: the next one starts there. (Time series
-    /// still gathered keep their own times.)
-    pub fn end_run(&mut self, time: f64, steps: u64) {
-        self.time_offset += time;
-        self.step_offset += steps;
-    }
-
     /// A static colour bar below the swing, F from 0 to [`SCALE_MAX`], labelled at its ends.
     /// Spanning the swing's width, it also keeps the view's extent steady.
     fn log_scale(rec: &RecordingStream) -> rerun::RecordingStreamResult<()> {
@@ -227,8 +175,7 @@ impl RopeLogger {
         });
         let colors = (0..pieces).map(|i| {
             let f = SCALE_MAX * (i as f64 + 0.5) / pieces as f64;
-            let [r, g, b] = tension_rgb(f);
-            rerun::Color::from_rgb(r, g, b)
+            tension_colour(f)
         });
         let mut labels = vec![String::new(); pieces];
         labels[pieces / 2] = format!("tension: red F = 0 … yellow F ≥ {SCALE_MAX} m g");
@@ -260,6 +207,15 @@ impl RopeLogger {
         )
     }
 
+    /// The `sim_time` and `step` columns of `frames`, placed after the runs before.
+    fn frame_times(&self, frames: &[Frame]) -> [rerun::TimeColumn; 2] {
+        let (time_offset, step_offset) = (self.time_offset, self.step_offset);
+        timelines(
+            frames.iter().map(|f| time_offset + f.time),
+            frames.iter().map(|f| (step_offset + f.step) as i64),
+        )
+    }
+
     /// Logs a batch of frames, in order, on the `sim_time` and `step` timelines: one row per
     /// frame and entity, sent as columns (one chunk per entity for the whole batch, far
     /// cheaper than a log call per frame and entity).
@@ -267,46 +223,41 @@ impl RopeLogger {
         if frames.is_empty() {
             return Ok(());
         }
-        let rec = &self.rec;
-        let (time_offset, step_offset) = (self.time_offset, self.step_offset);
-        let times = || {
-            timelines(
-                frames.iter().map(|f| time_offset + f.time),
-                frames.iter().map(|f| (step_offset + f.step) as i64),
-            )
-        };
-        let point = |p: &crate::geometry::Point| [p.x as f32, p.y as f32];
-        let ones = || std::iter::repeat_n(1, frames.len());
+        self.log_rope(frames)?;
+        self.log_tip_and_trail(frames)?;
+        self.log_tension_profile(frames)?;
+        self.gather_series(frames)
+    }
 
-        // The rope: one 2-point strip per segment, coloured by its tension.
+    /// The rope: one 2-point strip per segment, coloured by its tension.
+    fn log_rope(&self, frames: &[Frame]) -> rerun::RecordingStreamResult<()> {
         let mut strips = Vec::new();
-        let mut colors = Vec::new();
+        let mut colours = Vec::new();
         let mut lengths = Vec::with_capacity(frames.len());
         for f in frames {
             lengths.push(f.tension.len());
-            strips.extend(f.nodes.windows(2).map(|w| [point(&w[0]), point(&w[1])]));
-            colors.extend(f.tension.iter().map(|&t| {
-                let [r, g, b] = tension_rgb(t);
-                rerun::Color::from_rgb(r, g, b)
-            }));
+            strips.extend(f.nodes.windows(2).map(|w| [xy(&w[0]), xy(&w[1])]));
+            colours.extend(f.tension.iter().map(|&t| tension_colour(t)));
         }
-        rec.send_columns(
+        self.rec.send_columns(
             path::SEGMENTS,
-            times(),
+            self.frame_times(frames),
             rerun::LineStrips2D::update_fields()
                 .with_strips(strips)
-                .with_colors(colors)
+                .with_colors(colours)
                 .columns(lengths)?,
-        )?;
+        )
+    }
 
-        // The tip, and its trail as it stood at each frame.
-        let tips: Vec<[f32; 2]> = frames.iter().map(|f| point(&f.tip())).collect();
-        rec.send_columns(
+    /// The tip, and its trail as it stood at each frame.
+    fn log_tip_and_trail(&mut self, frames: &[Frame]) -> rerun::RecordingStreamResult<()> {
+        let tips: Vec<[f32; 2]> = frames.iter().map(|f| xy(&f.tip())).collect();
+        self.rec.send_columns(
             path::TIP,
-            times(),
+            self.frame_times(frames),
             rerun::Points2D::update_fields()
                 .with_positions(tips.iter().copied())
-                .columns(ones())?,
+                .columns_of_unit_batches()?,
         )?;
         let trails: Vec<Vec<[f32; 2]>> = tips
             .iter()
@@ -318,15 +269,17 @@ impl RopeLogger {
                 self.trail.iter().copied().collect()
             })
             .collect();
-        rec.send_columns(
+        self.rec.send_columns(
             path::TRAIL,
-            times(),
+            self.frame_times(frames),
             rerun::LineStrips2D::update_fields()
                 .with_strips(trails)
-                .columns(ones())?,
-        )?;
+                .columns_of_unit_batches()?,
+        )
+    }
 
-        // F(s) drawn upward: x = s, y = −F (the 2D view's y points down).
+    /// F(s) drawn upward: x = s, y = −F (the 2D view's y points down).
+    fn log_tension_profile(&self, frames: &[Frame]) -> rerun::RecordingStreamResult<()> {
         let profiles: Vec<Vec<[f32; 2]>> = frames
             .iter()
             .map(|f| {
@@ -338,14 +291,19 @@ impl RopeLogger {
                     .collect()
             })
             .collect();
-        rec.send_columns(
+        self.rec.send_columns(
             path::PROFILE,
-            times(),
+            self.frame_times(frames),
             rerun::LineStrips2D::update_fields()
                 .with_strips(profiles)
-                .columns(ones())?,
-        )?;
+                .columns_of_unit_batches()?,
+        )
+    }
 
+    /// Adds the frames' time series to those not yet sent, and sends them when enough have
+    /// gathered (or waited long enough).
+    fn gather_series(&mut self, frames: &[Frame]) -> rerun::RecordingStreamResult<()> {
+        let (time_offset, step_offset) = (self.time_offset, self.step_offset);
         self.series.extend(frames.iter().map(|f| {
             (
                 time_offset + f.time,
@@ -370,16 +328,49 @@ impl RopeLogger {
             self.rec.send_columns(
                 *entity,
                 timelines(rows.iter().map(|r| r.0), rows.iter().map(|r| r.1)),
-                rerun::Scalars::new(rows.iter().map(|r| r.2[i]))
-                    .columns(std::iter::repeat_n(1, rows.len()))?,
+                rerun::Scalars::new(rows.iter().map(|r| r.2[i])).columns_of_unit_batches()?,
             )?;
         }
         self.series.clear();
         Ok(())
     }
+}
 
-    /// The recording stream, for flushing at the end.
-    pub fn recording(&self) -> &RecordingStream {
-        &self.rec
+/// A point as the viewer takes it.
+fn xy(p: &Point) -> [f32; 2] {
+    [p.x as f32, p.y as f32]
+}
+
+/// A recording of runs, one after another on the timelines: each starts where the one
+/// before it ended (`--loop`), with its parameters logged there and a fresh trail.
+impl FrameSink for RopeLogger {
+    type Error = RecordingError;
+
+    fn begin_run(&mut self, plan: &RunPlan) -> Result<(), RecordingError> {
+        self.trail.clear();
+        self.rec.send_columns(
+            path::PARAMETERS,
+            timelines([self.time_offset], [self.step_offset as i64]),
+            rerun::TextDocument::update_fields()
+                .with_text(plan.markdown())
+                .with_media_type(rerun::MediaType::markdown())
+                .columns_of_unit_batches()?,
+        )?;
+        Ok(())
+    }
+
+    fn frames(&mut self, frames: &[Frame]) -> Result<(), RecordingError> {
+        Ok(self.log_frames(frames)?)
+    }
+
+    fn flush(&mut self) -> Result<(), RecordingError> {
+        self.send_series()?;
+        Ok(self.rec.flush_with_timeout(FLUSH_TIMEOUT)?)
+    }
+
+    /// Time series still gathered keep their own times.
+    fn end_run(&mut self, time: f64, steps: u64) {
+        self.time_offset += time;
+        self.step_offset += steps;
     }
 }

@@ -1,5 +1,5 @@
 //! From angles to positions and energy: the report's eqs. (13)–(16), with the recursive form
-//! of (17)–(18) done as one running sum (its printed typos corrected, see physics.md).
+//! of (17)–(18) done as one running sum (its printed typos corrected: `docs/physics.md`).
 //!
 //! Segment i is a uniform rod of mass m = h and length h from node i to node i + 1; node 0 is
 //! the support at the origin. y points down, so the potential energy is −m g y.

@@ -70,3 +70,55 @@ impl Progress {
         self.bar.finish_and_clear();
     }
 }
+
+/// Counts finished pieces of a long job (the runs of a study): a bar on a terminal, a line
+/// every tenth of the job off one.
+pub struct Counter {
+    bar: indicatif::ProgressBar,
+    plain: bool,
+    job: &'static str,
+    what: &'static str,
+    started: Instant,
+}
+
+impl Counter {
+    /// A counter of `total` pieces of `job` ("rope study"), each called `what` ("runs").
+    pub fn new(total: u64, job: &'static str, what: &'static str) -> Self {
+        let template =
+            format!("{{bar:40}} {{pos}}/{{len}} {what}, {{elapsed}} elapsed, ~{{eta}} left");
+        let bar = indicatif::ProgressBar::new(total).with_style(
+            indicatif::ProgressStyle::with_template(&template)
+                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        );
+        let plain = !std::io::IsTerminal::is_terminal(&std::io::stderr());
+        if plain {
+            bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
+        }
+        Self {
+            bar,
+            plain,
+            job,
+            what,
+            started: Instant::now(),
+        }
+    }
+
+    /// One more piece is done.
+    pub fn inc(&self) {
+        self.bar.inc(1);
+        let (done, total) = (self.bar.position(), self.bar.length().unwrap_or(0).max(1));
+        if self.plain && (done * 10 / total != (done - 1) * 10 / total || done == total) {
+            eprintln!(
+                "{}: {done}/{total} {} done, {:.0} s",
+                self.job,
+                self.what,
+                self.started.elapsed().as_secs_f64()
+            );
+        }
+    }
+
+    /// The job has ended: the bar goes.
+    pub fn finish(&self) {
+        self.bar.finish_and_clear();
+    }
+}

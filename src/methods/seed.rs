@@ -6,10 +6,32 @@
 //! Thomas sweep; (ii) the interior update (8), fused with the back-substitution so that the
 //! step reads the arrays twice; (iii) the support condition (11); (iv) the free end (12).
 
+use super::error_model::ErrorModel;
+use super::method::{self, Descriptor, Method, Observation};
 use crate::error::{ConfigError, Diverged};
-use crate::geometry::{self, Energy};
-use crate::method::{self, Method, MethodKind, Observation};
-use crate::scene::Scene;
+use crate::model::Scene;
+use crate::model::geometry::{self, Energy};
+
+/// What the seed scheme says of itself (see [`Descriptor`]).
+pub const DESCRIPTOR: Descriptor = Descriptor {
+    name: "seed",
+    // (11) reaches φ_2 and (12) φ_{N−3}, and both must be interior segments updated by (8).
+    min_segments: 4,
+    // Measured by `rope study` (its stability map): the scheme blows up past about this.
+    courant: 0.7,
+    limit_meaning: "estimate k = C h / sqrt(F_max)",
+    // Half the limit: the error is dominated by the first order in h, a smaller k buys
+    // nothing.
+    default_step_fraction: 0.5,
+    refuses_unstable_step: true,
+    ns_per_segment_step: 10.2,
+    error_model: ErrorModel {
+        constant: 1.04,
+        order: 1.00,
+    },
+    colours: ([250, 170, 60], [150, 30, 0]),
+    build: |scene, segments, dt| Ok(Box::new(Seed::new(scene, segments, dt)?)),
+};
 
 /// Which sign the support condition (11) is used with.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -42,16 +64,6 @@ pub struct Seed {
 }
 
 impl Seed {
-    /// Fewest segments the scheme can run with: (11) reaches φ_2 and (12) φ_{N−3}, and both
-    /// must be interior segments updated by (8).
-    pub const MIN_SEGMENTS: usize = 4;
-
-    /// Courant number of the estimated stability limit: k < C h / sqrt(F_max), measured by
-    /// `rope study` (the README's stability map).
-    const COURANT: f64 = 0.7;
-    /// Largest tension expected in a swing from rest (support tension ≲ 5/4, report).
-    const TENSION_MAX: f64 = 1.5;
-
     /// The scheme at rest in `scene`, with the derived support sign.
     pub fn new(scene: &Scene, segments: usize, dt: f64) -> Result<Self, ConfigError> {
         Self::with_support_sign(scene, segments, dt, SupportSign::Derived)
@@ -65,13 +77,7 @@ impl Seed {
         sign: SupportSign,
     ) -> Result<Self, ConfigError> {
         scene.validate()?;
-        if segments < Self::MIN_SEGMENTS {
-            return Err(ConfigError::TooFewSegments {
-                method: "seed",
-                segments,
-                min: Self::MIN_SEGMENTS,
-            });
-        }
+        method::validate_segments(&DESCRIPTOR, segments)?;
         method::validate_dt(dt)?;
         if scene.support_angle() == 0.0 {
             return Err(ConfigError::SeedFromHorizontal);
@@ -94,17 +100,6 @@ impl Seed {
         };
         seed.solve_tension();
         Ok(seed)
-    }
-
-    /// Estimated largest stable time step, k < C h / sqrt(F_max).
-    pub fn stability_limit(segments: usize) -> f64 {
-        Self::COURANT / (segments as f64 * Self::TENSION_MAX.sqrt())
-    }
-
-    /// Default time step: half the stability limit, rounded down to 1, 2 or 5 × 10^k. The
-    /// scheme's error is dominated by its first order in h; a smaller k buys nothing.
-    pub fn default_dt(segments: usize) -> f64 {
-        method::round_down_nicely(0.5 * Self::stability_limit(segments))
     }
 
     /// The tension profile of the latest solve, F_0 … F_{N−1}.
@@ -150,17 +145,13 @@ impl Seed {
     }
 
     fn diverged(&self, what: &str) -> Diverged {
-        Diverged {
-            step: self.steps + 1,
-            time: (self.steps + 1) as f64 * self.k,
-            reason: method::non_finite_reason(MethodKind::Seed, self.phi.len(), self.k, what),
-        }
+        method::non_finite(&DESCRIPTOR, self.phi.len(), self.k, self.steps, what)
     }
 }
 
 impl Method for Seed {
-    fn kind(&self) -> MethodKind {
-        MethodKind::Seed
+    fn descriptor(&self) -> &'static Descriptor {
+        &DESCRIPTOR
     }
 
     fn segments(&self) -> usize {
@@ -169,10 +160,6 @@ impl Method for Seed {
 
     fn dt(&self) -> f64 {
         self.k
-    }
-
-    fn time(&self) -> f64 {
-        self.steps as f64 * self.k
     }
 
     fn steps(&self) -> u64 {

@@ -1,0 +1,70 @@
+//! How accurate a method is at N segments: tip error ≈ C h^p, and the least-squares fit of
+//! that law to measured errors (used by `rope study` to fit it, and by the convergence tests
+//! to measure an order).
+
+/// Tip error ≈ `constant` · h^`order`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ErrorModel {
+    pub constant: f64,
+    pub order: f64,
+}
+
+impl ErrorModel {
+    /// Predicted tip error at `segments`.
+    pub fn predict(&self, segments: usize) -> f64 {
+        self.constant * (1.0 / segments as f64).powf(self.order)
+    }
+
+    /// Fewest segments whose predicted error is at most `tolerance`.
+    pub fn segments_for(&self, tolerance: f64) -> usize {
+        let h = (tolerance / self.constant).powf(1.0 / self.order);
+        (1.0 / h).ceil() as usize
+    }
+
+    /// The least-squares fit of log(error) = log C + p log h to `(segments, error)` points
+    /// (errors ≤ 0 are left out). `None` with fewer than two distinct segment counts.
+    pub fn fit(points: impl IntoIterator<Item = (usize, f64)>) -> Option<ErrorModel> {
+        let logs: Vec<(f64, f64)> = points
+            .into_iter()
+            .filter(|&(_, e)| e > 0.0)
+            .map(|(n, e)| ((1.0 / n as f64).ln(), e.ln()))
+            .collect();
+        let m = logs.len() as f64;
+        let (mx, my) = logs
+            .iter()
+            .fold((0.0, 0.0), |(a, b), (x, y)| (a + x / m, b + y / m));
+        let sxy: f64 = logs.iter().map(|(x, y)| (x - mx) * (y - my)).sum();
+        let sxx: f64 = logs.iter().map(|(x, _)| (x - mx) * (x - mx)).sum();
+        if logs.len() < 2 || sxx <= 0.0 {
+            return None;
+        }
+        let order = sxy / sxx;
+        Some(ErrorModel {
+            constant: (my - order * mx).exp(),
+            order,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fit_recovers_an_exact_power_law() {
+        let law = ErrorModel {
+            constant: 0.3,
+            order: 2.0,
+        };
+        let fitted = ErrorModel::fit([10, 20, 40].map(|n| (n, law.predict(n)))).unwrap();
+        assert!((fitted.order - 2.0).abs() < 1e-12);
+        assert!((fitted.constant - 0.3).abs() < 1e-12);
+        assert_eq!(law.segments_for(law.predict(40)), 40);
+    }
+
+    #[test]
+    fn fit_needs_two_segment_counts() {
+        assert!(ErrorModel::fit([(10, 1e-3)]).is_none());
+        assert!(ErrorModel::fit([(10, 1e-3), (10, 2e-3)]).is_none());
+    }
+}

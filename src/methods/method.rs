@@ -1,0 +1,164 @@
+//! What a numerical method is: the [`Method`] trait the driver steps, the [`Observation`] it
+//! fills for output, and the [`Descriptor`] in which each method says everything else about
+//! itself once. Also the checks and messages every method shares.
+
+use super::error_model::ErrorModel;
+use crate::error::{ConfigError, Diverged};
+use crate::model::{Energy, Scene};
+
+/// Largest tension of a swing from rest, in m g (the support tension stays below about 5/4,
+/// the report): what the stability limits are written for.
+pub const TENSION_MAX: f64 = 1.5;
+
+/// The state of the string at one instant, for output: everything per segment.
+#[derive(Clone, Debug, Default)]
+pub struct Observation {
+    /// Segment angles φ_i below the horizontal.
+    pub angle: Vec<f64>,
+    /// φ̇_i.
+    pub angular_velocity: Vec<f64>,
+    /// φ̈_i.
+    pub angular_acceleration: Vec<f64>,
+    /// Tension F_i on each segment (F ≥ 0 for a string; 0 at the free end).
+    pub tension: Vec<f64>,
+}
+
+/// A numerical method advancing the string in time. Pure: state in, state out, no I/O.
+pub trait Method: Send {
+    /// What the method says of itself.
+    fn descriptor(&self) -> &'static Descriptor;
+    /// Number of segments N.
+    fn segments(&self) -> usize;
+    /// Time step k.
+    fn dt(&self) -> f64;
+    /// Simulated time reached: steps × k (every step has the same length).
+    fn time(&self) -> f64 {
+        self.steps() as f64 * self.dt()
+    }
+    /// Steps taken.
+    fn steps(&self) -> u64;
+    /// Advances one time step, or says why the new state cannot be trusted.
+    fn step(&mut self) -> Result<(), Diverged>;
+    /// Total energy now (eqs. 13–16), second-order accurate in the time step.
+    fn energy(&self) -> Energy;
+    /// Tension at the support, F_0, from the latest solve.
+    fn support_tension(&self) -> f64;
+    /// Fills `out` with the state now (tension freshly solved for the current time).
+    fn observe(&mut self, out: &mut Observation);
+    /// A copy of the method in its current state.
+    fn box_clone(&self) -> Box<dyn Method>;
+}
+
+/// The largest of 1, 2 or 5 × 10^k not above `x`: default steps are round numbers, so that
+/// whole durations are whole numbers of steps.
+pub fn round_down_nicely(x: f64) -> f64 {
+    let decade = 10f64.powf(x.log10().floor());
+    let mantissa = x / decade;
+    let nice = if mantissa >= 5.0 {
+        5.0
+    } else if mantissa >= 2.0 {
+        2.0
+    } else {
+        1.0
+    };
+    nice * decade
+}
+
+/// Checks what every method needs of a time step.
+pub(crate) fn validate_dt(dt: f64) -> Result<(), ConfigError> {
+    if dt.is_finite() && dt > 0.0 {
+        Ok(())
+    } else {
+        Err(ConfigError::TimeStep(dt))
+    }
+}
+
+/// Checks what every method needs of a segment count.
+pub(crate) fn validate_segments(method: &Descriptor, segments: usize) -> Result<(), ConfigError> {
+    if segments < method.min_segments {
+        return Err(ConfigError::TooFewSegments {
+            method: method.name,
+            segments,
+            min: method.min_segments,
+        });
+    }
+    Ok(())
+}
+
+/// Where the time step stands against the method's estimated stability limit, for the
+/// reason of a divergence: "k = … exceeds the estimated limit …" or "… is within …".
+pub fn stability_hint(method: &Descriptor, segments: usize, dt: f64) -> String {
+    let limit = method.stability_limit(segments);
+    if dt > limit {
+        format!("k = {dt:.3e} exceeds the estimated limit {limit:.3e}")
+    } else {
+        format!("k = {dt:.3e} is within the estimated limit {limit:.3e}")
+    }
+}
+
+/// The divergence of step `steps + 1` of a method whose `what` became non-finite.
+pub(crate) fn non_finite(
+    method: &Descriptor,
+    segments: usize,
+    dt: f64,
+    steps: u64,
+    what: &str,
+) -> Diverged {
+    Diverged {
+        step: steps + 1,
+        time: (steps + 1) as f64 * dt,
+        reason: format!(
+            "{what} became non-finite ({})",
+            stability_hint(method, segments, dt)
+        ),
+    }
+}
+
+/// Builds a method at rest in a scene, with N segments and time step k, validating what it
+/// needs.
+pub type Builder = fn(&Scene, usize, f64) -> Result<Box<dyn Method>, ConfigError>;
+
+/// Everything the crate needs to know of a method, in one place. Each method's file defines
+/// its own as `DESCRIPTOR`.
+#[derive(Clone, Copy, Debug)]
+pub struct Descriptor {
+    /// Name on the command line, in summaries and on charts.
+    pub name: &'static str,
+    /// Fewest segments the method can run with.
+    pub min_segments: usize,
+    /// C of the estimated stability limit k < C h / sqrt([`TENSION_MAX`]).
+    pub courant: f64,
+    /// What the stability limit means for this method, as the stability map labels it.
+    pub limit_meaning: &'static str,
+    /// The default time step, as a fraction of the stability limit (then rounded down to
+    /// 1, 2 or 5 × 10^k).
+    pub default_step_fraction: f64,
+    /// Whether a time step past the limit is refused (unless `--allow-unstable`): true for a
+    /// method that blows up there, false for one that stays stable and only costs more.
+    pub refuses_unstable_step: bool,
+    /// CPU cost of one step per segment, in ns (`cargo bench --bench step`, N = 1000).
+    pub ns_per_segment_step: f64,
+    /// Tip error at the final time ≈ C h^p, fitted by `rope study` (30° release, t = 1).
+    pub error_model: ErrorModel,
+    /// Chart colours: its coarsest and its finest runs, shades between.
+    pub colours: ([u8; 3], [u8; 3]),
+    /// Builds the method at rest in a scene, validating what it needs.
+    pub build: Builder,
+}
+
+impl Descriptor {
+    /// Estimated largest stable time step at `segments` segments: k < C h / sqrt(F_max).
+    pub fn stability_limit(&self, segments: usize) -> f64 {
+        self.courant / (segments as f64 * TENSION_MAX.sqrt())
+    }
+
+    /// The default time step at `segments` segments.
+    pub fn default_dt(&self, segments: usize) -> f64 {
+        round_down_nicely(self.default_step_fraction * self.stability_limit(segments))
+    }
+
+    /// The Courant number C = k N sqrt(F_max) that a step `dt` at `segments` amounts to.
+    pub fn courant_of(segments: f64, dt: f64) -> f64 {
+        dt * segments * TENSION_MAX.sqrt()
+    }
+}

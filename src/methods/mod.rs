@@ -1,0 +1,27 @@
+//! The numerical methods: each advances the string one time step, pure (state in, state out,
+//! no I/O), and describes itself once, in its [`Descriptor`].
+//!
+//! * [`method`]: what every method is: the [`Method`] trait and its [`Descriptor`];
+//! * [`seed`]: the report's finite-difference scheme, first order in h;
+//! * [`chain`]: a chain of rigid rods with RK4, second order in h;
+//! * [`registry`]: the methods a run can choose by name ([`MethodKind`]), each mapped to its
+//!   descriptor, and the report's own setting;
+//! * [`error_model`] and [`tolerance`]: how accurate a method is at N segments, and the rule
+//!   that picks the cheapest method for a tolerance;
+//! * [`tridiagonal`]: the bare Thomas solve the seed scheme's step is measured against.
+//!
+//! Adding a method: one file here that implements [`Method`] and defines its `DESCRIPTOR`,
+//! plus its variant in [`MethodKind`] and its line in [`MethodKind::descriptor`]. Files here
+//! import what they use from the file that defines it, never through this one, so that no
+//! two of them import each other.
+
+pub mod chain;
+pub mod error_model;
+pub mod method;
+pub mod registry;
+pub mod seed;
+pub mod tolerance;
+pub mod tridiagonal;
+
+pub use method::{Descriptor, Method, Observation, TENSION_MAX, round_down_nicely, stability_hint};
+pub use registry::{MethodKind, REPORT, ReportSetting};

@@ -1,0 +1,98 @@
+//! The methods a run can choose by name, and everything each says of itself. The rest of the
+//! crate asks a [`MethodKind`] for its [`Descriptor`] and never matches on the method.
+
+use super::method::{Descriptor, Method};
+use super::{chain, seed};
+use crate::error::ConfigError;
+use crate::model::Scene;
+
+/// The methods a run can choose by name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, clap::ValueEnum, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum MethodKind {
+    /// The report's finite-difference scheme: first order in h, explicit, cannot start from
+    /// the horizontal.
+    Seed,
+    /// A chain of N uniform rigid rods, joint forces from an O(N) block-tridiagonal solve,
+    /// RK4 in time: second order in h, exact inextensibility, starts from the horizontal.
+    Chain,
+}
+
+impl MethodKind {
+    /// Every method, in the order charts list them.
+    pub const ALL: [MethodKind; 2] = [MethodKind::Seed, MethodKind::Chain];
+
+    /// The method of a finite run when none is named: the report's.
+    pub const DEFAULT: MethodKind = MethodKind::Seed;
+
+    /// The method of an endless run (`--duration inf`) when none is named: one that stays
+    /// stable for ever (the seed scheme diverges after some tens of time units at any step).
+    pub const DEFAULT_ENDLESS: MethodKind = MethodKind::Chain;
+
+    /// The method `rope study` computes its converged reference with: of a known, whole order
+    /// in h (Richardson's extrapolation needs one) and with no stability limit to respect.
+    pub const REFERENCE: MethodKind = MethodKind::Chain;
+
+    /// What the method says of itself: the registry, one line per method.
+    pub fn descriptor(self) -> &'static Descriptor {
+        match self {
+            Self::Seed => &seed::DESCRIPTOR,
+            Self::Chain => &chain::DESCRIPTOR,
+        }
+    }
+
+    /// The method chosen when none is named, for a run of `duration` time units.
+    pub fn default_for(duration: f64) -> MethodKind {
+        if duration.is_infinite() {
+            Self::DEFAULT_ENDLESS
+        } else {
+            Self::DEFAULT
+        }
+    }
+
+    /// The name used on the command line and in summaries.
+    pub fn name(self) -> &'static str {
+        self.descriptor().name
+    }
+
+    /// Estimated largest stable time step at `segments` segments.
+    pub fn stability_limit(self, segments: usize) -> f64 {
+        self.descriptor().stability_limit(segments)
+    }
+
+    /// A stable time step that is accurate for this method at `segments` segments.
+    pub fn default_dt(self, segments: usize) -> f64 {
+        self.descriptor().default_dt(segments)
+    }
+
+    /// Builds the method for `scene`, validating everything it needs.
+    pub fn build(
+        self,
+        scene: &Scene,
+        segments: usize,
+        dt: f64,
+    ) -> Result<Box<dyn Method>, ConfigError> {
+        (self.descriptor().build)(scene, segments, dt)
+    }
+}
+
+impl std::fmt::Display for MethodKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A run of the report, to compare with.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ReportSetting {
+    pub method: MethodKind,
+    pub segments: usize,
+    pub dt: f64,
+}
+
+/// The report's own setting: its scheme at N = 100, k = 1e-5.
+pub const REPORT: ReportSetting = ReportSetting {
+    method: MethodKind::Seed,
+    segments: 100,
+    dt: 1e-5,
+};

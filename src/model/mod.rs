@@ -1,0 +1,11 @@
+//! The physics, with no numerical method in it: the scenes a run starts from, the geometry
+//! and energy of a chain of segments, the string's small-oscillation modes, and measurements
+//! on sampled motion. Everything here is a pure function of its arguments.
+
+pub mod analysis;
+pub mod bessel;
+pub mod geometry;
+pub mod scene;
+
+pub use geometry::{Energy, Point};
+pub use scene::Scene;

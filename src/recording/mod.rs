@@ -1,0 +1,15 @@
+//! Recording: frames into a Rerun recording stream, and where that stream goes.
+//!
+//! * [`logger`]: [`RopeLogger`](logger::RopeLogger), the [`FrameSink`](crate::run::FrameSink)
+//!   that draws frames as Rerun entities (it knows nothing of the equations);
+//! * [`blueprint`]: the viewer's layout, one function per view; [`colour`]: the tension map;
+//! * [`destinations`]: the flags that name where the recording goes, and opening them;
+//! * [`viewer_sinks`]: links to viewers that can never stall a run;
+//! * [`error`]: what can go wrong here.
+
+pub mod blueprint;
+pub mod colour;
+pub mod destinations;
+pub mod error;
+pub mod logger;
+pub mod viewer_sinks;

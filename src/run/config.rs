@@ -1,0 +1,129 @@
+//! What a run is asked to do ([`RunConfig`], every default documented) and what it will do
+//! once checked ([`RunPlan`], validated once, every value resolved).
+
+use crate::error::ConfigError;
+use crate::methods::{Method, MethodKind};
+use crate::model::Scene;
+
+/// A run as asked for. Build it with struct update syntax over [`RunConfig::default`], then
+/// [`validate`](RunConfig::validate) it into a [`RunPlan`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunConfig {
+    /// The numerical method. Default: [`MethodKind::DEFAULT`], the report's scheme.
+    pub method: MethodKind,
+    /// The initial state. Default: straight and at rest, 30° below the horizontal.
+    pub scene: Scene,
+    /// Segments N (h = 1/N). Default: 100, the report's.
+    pub segments: usize,
+    /// Time step k; `None` (the default) takes the method's own default for N.
+    pub dt: Option<f64>,
+    /// Simulated time to run, in time units sqrt(L/g); `f64::INFINITY` runs until stopped.
+    /// Default: 3.
+    pub duration: f64,
+    /// Frames per time unit. Default: 60.
+    pub log_rate: f64,
+    /// Pace to the wall clock, this many time units per second; `None` (the default) runs as
+    /// fast as it can.
+    pub realtime: Option<f64>,
+    /// Run a time step past the stability limit of a method that refuses one, to watch it
+    /// fail. Default: false.
+    pub allow_unstable: bool,
+}
+
+impl Default for RunConfig {
+    fn default() -> Self {
+        Self {
+            method: MethodKind::DEFAULT,
+            scene: Scene::Release { angle_deg: 30.0 },
+            segments: 100,
+            dt: None,
+            duration: 3.0,
+            log_rate: 60.0,
+            realtime: None,
+            allow_unstable: false,
+        }
+    }
+}
+
+/// A validated run: every value checked and resolved (the time step is never missing).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunPlan {
+    pub method: MethodKind,
+    pub scene: Scene,
+    pub segments: usize,
+    pub dt: f64,
+    pub duration: f64,
+    pub log_rate: f64,
+    pub realtime: Option<f64>,
+}
+
+impl RunConfig {
+    /// Checks every parameter, naming the one that is wrong and what would work.
+    pub fn validate(&self) -> Result<RunPlan, ConfigError> {
+        let method = self.method;
+        let segments = self.segments;
+        let dt = self
+            .dt
+            .unwrap_or_else(|| method.default_dt(segments.max(1)));
+        if self.duration.is_nan() || self.duration < 0.0 {
+            return Err(ConfigError::Duration(self.duration));
+        }
+        if !(self.log_rate.is_finite() && self.log_rate > 0.0) {
+            return Err(ConfigError::LogRate(self.log_rate));
+        }
+        if let Some(speed) = self.realtime
+            && !(speed.is_finite() && speed > 0.0)
+        {
+            return Err(ConfigError::Realtime(speed));
+        }
+        // Building the method validates the scene, segments and dt as the method needs.
+        method.build(&self.scene, segments, dt)?;
+        let limit = method.stability_limit(segments);
+        if method.descriptor().refuses_unstable_step && dt > limit && !self.allow_unstable {
+            return Err(ConfigError::UnstableTimeStep {
+                method: method.name(),
+                segments,
+                dt,
+                limit,
+            });
+        }
+        if self.log_rate * dt > 1.0 {
+            return Err(ConfigError::LogRateAboveSteps {
+                log_rate: self.log_rate,
+                steps_per_unit: 1.0 / dt,
+            });
+        }
+        Ok(RunPlan {
+            method,
+            scene: self.scene,
+            segments,
+            dt,
+            duration: self.duration,
+            log_rate: self.log_rate,
+            realtime: self.realtime,
+        })
+    }
+}
+
+impl RunPlan {
+    /// The method at rest in the plan's scene.
+    pub fn build(&self) -> Result<Box<dyn Method>, ConfigError> {
+        self.method.build(&self.scene, self.segments, self.dt)
+    }
+
+    /// The parameters as a Markdown document, so that a recording explains itself.
+    pub fn markdown(&self) -> String {
+        format!(
+            "# rope run\n\n| parameter | value |\n|---|---|\n| method | {} |\n| scene | {}, at rest at the start |\n| segments N | {} |\n| time step k | {:.3e} |\n| duration | {} |\n| frames per time unit | {} |\n\nUnits: L = g = 1, time in sqrt(L/g). y points down. Rope colour: tension, RGB (255, 200·F, 0).",
+            self.method, self.scene, self.segments, self.dt, self.duration, self.log_rate
+        )
+    }
+
+    /// The initial angle at the support, in degrees below the horizontal.
+    pub fn angle_deg(&self) -> f64 {
+        match self.scene {
+            Scene::Release { angle_deg } => angle_deg,
+            Scene::Mode { .. } => 90.0,
+        }
+    }
+}

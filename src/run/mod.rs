@@ -1,0 +1,16 @@
+//! Running a scene: what a run is asked to do ([`config`]), the pure driver that takes a
+//! method to its final time and makes frames ([`simulate`]), the two-thread pipeline that
+//! hands the frames to a [`sink::FrameSink`] ([`pipeline`]), and what a run reports
+//! ([`summary`], [`progress`]). Nothing here knows where frames end up.
+
+pub mod config;
+pub mod pipeline;
+pub mod progress;
+pub mod simulate;
+pub mod sink;
+pub mod summary;
+
+pub use config::{RunConfig, RunPlan};
+pub use simulate::Frame;
+pub use sink::FrameSink;
+pub use summary::{Status, Summary};

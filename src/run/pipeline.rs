@@ -1,0 +1,182 @@
+//! One run, on two threads: the simulation thread drives the method and produces frames, the
+//! sink thread hands them to a [`FrameSink`] in batches; a bounded channel between them
+//! applies back-pressure, so no frame is dropped.
+
+use super::config::RunPlan;
+use super::simulate::{self, Frame, Options, Outcome};
+use super::sink::FrameSink;
+use super::summary::{Summary, TipSamples};
+use crate::error::ConfigError;
+use crossbeam_channel::{Receiver, RecvTimeoutError, Sender};
+use std::ops::ControlFlow;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+/// Frames in flight between the threads: enough to ride out a slow flush, small enough that
+/// an interrupted run drains at once.
+const CHANNEL_FRAMES: usize = 64;
+
+/// Frames handed to the sink together when the run is not paced to the wall clock.
+const BATCH_FRAMES: usize = 16;
+
+/// How long a partly filled batch waits for more frames before it is handed over.
+const BATCH_WAIT: Duration = Duration::from_millis(50);
+
+/// Runs `plan`, handing its frames to `sink`, until the final time, divergence, or `stop`.
+/// The summary says what was computed; if the sink failed, its `recording_error` says why
+/// (a recording that could not be completed does not undo the run). `progress` hears the
+/// simulated time of each frame, from the simulation thread.
+pub fn run<S: FrameSink>(
+    plan: &RunPlan,
+    sink: &mut S,
+    stop: &AtomicBool,
+    progress: &(dyn Fn(f64) + Sync),
+) -> Result<Summary, ConfigError> {
+    let mut method = plan.build()?;
+    let started = Instant::now();
+    let (tx, rx) = crossbeam_channel::bounded::<Frame>(CHANNEL_FRAMES);
+    // Paced runs show each frame as soon as it is made.
+    let batch_frames = if plan.realtime.is_some() {
+        1
+    } else {
+        BATCH_FRAMES
+    };
+    let (simulated, delivered) = std::thread::scope(|scope| {
+        let sink = &mut *sink;
+        // The receiver moves to the sink thread: if the sink fails, it is dropped with it,
+        // and the simulation's next send ends the run instead of waiting for ever.
+        let sink_thread = scope.spawn(move || deliver(plan, sink, rx, batch_frames));
+        let simulated = simulate_and_send(plan, method.as_mut(), tx, stop, progress, started);
+        let delivered = sink_thread
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        (simulated, delivered)
+    });
+    let (outcome, tip_samples, busy) = simulated;
+    sink.end_run(outcome.time, outcome.steps);
+    let recording_error = delivered.err().map(|err| err.to_string());
+    Ok(Summary::new(
+        plan,
+        &outcome,
+        tip_samples,
+        busy,
+        started.elapsed(),
+        recording_error,
+    ))
+}
+
+/// Why the sink could not take the run, in words: the step that failed and the sink's
+/// own reason.
+#[derive(Debug, thiserror::Error)]
+enum Delivery<E: std::error::Error> {
+    #[error("logging the run's parameters: {0}")]
+    Begin(E),
+    #[error("writing frames to the recording: {0}")]
+    Frames(E),
+    #[error("flushing the recording: {0}")]
+    Flush(E),
+}
+
+/// The sink thread: batches of up to `batch_frames`, or whatever came within [`BATCH_WAIT`]
+/// (so a slow run still shows live), until the simulation has ended; then the flush.
+fn deliver<S: FrameSink>(
+    plan: &RunPlan,
+    sink: &mut S,
+    rx: Receiver<Frame>,
+    batch_frames: usize,
+) -> Result<(), Delivery<S::Error>> {
+    sink.begin_run(plan).map_err(Delivery::Begin)?;
+    let mut batch = Vec::with_capacity(batch_frames);
+    let mut open = true;
+    while open {
+        match rx.recv() {
+            Ok(frame) => batch.push(frame),
+            Err(_) => break, // the simulation has ended and every frame is delivered
+        }
+        while batch.len() < batch_frames {
+            match rx.recv_timeout(BATCH_WAIT) {
+                Ok(frame) => batch.push(frame),
+                Err(RecvTimeoutError::Timeout) => break,
+                Err(RecvTimeoutError::Disconnected) => {
+                    open = false;
+                    break;
+                }
+            }
+        }
+        sink.frames(&batch).map_err(Delivery::Frames)?;
+        batch.clear();
+    }
+    sink.flush().map_err(Delivery::Flush)
+}
+
+/// The simulation thread's work: runs the method, keeps the tip's latest samples, paces to
+/// the wall clock if asked, and sends each frame. A sink that has gone ends the run. Returns
+/// the outcome, the tip samples, and the time spent computing (not waiting).
+fn simulate_and_send(
+    plan: &RunPlan,
+    method: &mut dyn crate::methods::Method,
+    tx: Sender<Frame>,
+    stop: &AtomicBool,
+    progress: &(dyn Fn(f64) + Sync),
+    started: Instant,
+) -> (Outcome, TipSamples, Duration) {
+    let options = Options {
+        duration: plan.duration,
+        log_rate: plan.log_rate,
+    };
+    let mut samples = TipSamples::default();
+    let mut waiting = Duration::ZERO;
+    let outcome = simulate::run(method, &options, Some(stop), |frame| {
+        samples.push(frame.time, frame.tip());
+        progress(frame.time);
+        let wait_started = Instant::now();
+        if let Some(speed) = plan.realtime {
+            pace(started, frame.time / speed, stop);
+        }
+        let sent = tx.send(frame).is_ok();
+        waiting += wait_started.elapsed();
+        if sent {
+            ControlFlow::Continue(())
+        } else {
+            ControlFlow::Break(())
+        }
+    });
+    drop(tx); // ends the sink thread's loop once it has drained the channel
+    (outcome, samples, started.elapsed().saturating_sub(waiting))
+}
+
+/// Sleeps until `target_seconds` after `started`, waking early when `stop` is set.
+fn pace(started: Instant, target_seconds: f64, stop: &AtomicBool) {
+    let target = started + Duration::from_secs_f64(target_seconds);
+    while !stop.load(Ordering::Relaxed) {
+        let now = Instant::now();
+        if now >= target {
+            return;
+        }
+        std::thread::sleep((target - now).min(Duration::from_millis(50)));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::run::RunConfig;
+
+    #[test]
+    fn a_channel_sink_receives_every_frame_of_the_run() {
+        let plan = RunConfig {
+            duration: 0.5,
+            ..RunConfig::default()
+        }
+        .validate()
+        .unwrap();
+        let (mut tx, rx) = crossbeam_channel::unbounded();
+        let summary = run(&plan, &mut tx, &AtomicBool::new(false), &|_| {}).unwrap();
+        drop(tx);
+        let times: Vec<f64> = rx.iter().map(|f| f.time).collect();
+        assert_eq!(times.len() as u64, summary.frames_logged);
+        assert_eq!(times.len(), 31); // t = 0, 1/60, …, 0.5
+        assert!(times.windows(2).all(|w| w[0] < w[1]));
+        assert!(summary.recording_error.is_none());
+    }
+}

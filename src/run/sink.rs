@@ -1,0 +1,77 @@
+//! Where a run's frames go: the seam between running and recording. The pipeline hands every
+//! frame to a [`FrameSink`] and knows nothing of what it does with them; Rerun's recording is
+//! one sink, `()` drops them, and a channel hands them to another thread (a consumer that is
+//! not Rerun: a CSV writer, a test).
+
+use super::config::RunPlan;
+use super::simulate::Frame;
+
+/// Receives the frames of runs, in order. For each run the pipeline calls [`begin_run`]
+/// once, [`frames`] with batches in time order, [`flush`] once after the last frame, and
+/// [`end_run`] once, from one thread at a time.
+///
+/// [`begin_run`]: FrameSink::begin_run
+/// [`frames`]: FrameSink::frames
+/// [`flush`]: FrameSink::flush
+/// [`end_run`]: FrameSink::end_run
+pub trait FrameSink: Send {
+    /// Why frames could not be taken; it ends the run, and the summary reports it.
+    type Error: std::error::Error + Send + Sync + 'static;
+
+    /// A run starts, with these parameters.
+    fn begin_run(&mut self, plan: &RunPlan) -> Result<(), Self::Error>;
+
+    /// The next frames of the run, oldest first.
+    fn frames(&mut self, frames: &[Frame]) -> Result<(), Self::Error>;
+
+    /// The run has produced its last frame: deliver everything taken so far.
+    fn flush(&mut self) -> Result<(), Self::Error>;
+
+    /// The run reached simulated `time` after `steps` steps (the next one starts there).
+    fn end_run(&mut self, time: f64, steps: u64);
+}
+
+/// Takes every frame and keeps none: a run measured, not recorded.
+impl FrameSink for () {
+    type Error = std::convert::Infallible;
+
+    fn begin_run(&mut self, _plan: &RunPlan) -> Result<(), Self::Error> {
+        Ok(())
+    }
+
+    fn frames(&mut self, _frames: &[Frame]) -> Result<(), Self::Error> {
+        Ok(())
+    }
+
+    fn flush(&mut self) -> Result<(), Self::Error> {
+        Ok(())
+    }
+
+    fn end_run(&mut self, _time: f64, _steps: u64) {}
+}
+
+/// The receiving end of the channel has gone: nobody takes the frames any more.
+#[derive(Debug, thiserror::Error)]
+#[error("the frames' receiver has gone")]
+pub struct ReceiverGone;
+
+/// Hands each frame to another thread.
+impl FrameSink for crossbeam_channel::Sender<Frame> {
+    type Error = ReceiverGone;
+
+    fn begin_run(&mut self, _plan: &RunPlan) -> Result<(), Self::Error> {
+        Ok(())
+    }
+
+    fn frames(&mut self, frames: &[Frame]) -> Result<(), Self::Error> {
+        frames
+            .iter()
+            .try_for_each(|frame| self.send(frame.clone()).map_err(|_| ReceiverGone))
+    }
+
+    fn flush(&mut self) -> Result<(), Self::Error> {
+        Ok(())
+    }
+
+    fn end_run(&mut self, _time: f64, _steps: u64) {}
+}

@@ -1,0 +1,184 @@
+//! The run's summary: a JSON document (field names are a contract) and a short text for
+//! people.
+
+use super::config::RunPlan;
+use super::simulate::{Outcome, REFERENCE_STEP};
+use crate::error::Diverged;
+use crate::methods::MethodKind;
+use crate::model::analysis;
+use crate::model::{Point, Scene};
+use serde::Serialize;
+use std::collections::VecDeque;
+use std::time::Duration;
+
+/// Tip samples the summary keeps (the latest), so that an endless run's memory stays flat.
+pub const MAX_TIP_SAMPLES: usize = 1 << 16;
+
+/// The tip's latest `[t, x, y]` samples, at most [`MAX_TIP_SAMPLES`].
+#[derive(Clone, Debug, Default)]
+pub struct TipSamples(VecDeque<[f64; 3]>);
+
+impl TipSamples {
+    /// Adds the tip at `time`, forgetting the oldest sample when full.
+    pub fn push(&mut self, time: f64, tip: Point) {
+        if self.0.len() == MAX_TIP_SAMPLES {
+            self.0.pop_front();
+        }
+        self.0.push_back([time, tip.x, tip.y]);
+    }
+}
+
+/// How the run ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Status {
+    /// Reached the final time.
+    Ok,
+    /// Stopped because its numbers could no longer be trusted (see `diverged`).
+    Diverged,
+    /// Stopped early by Ctrl-C / SIGTERM; everything up to then is kept.
+    Interrupted,
+}
+
+/// Energy statistics (eqs. 13–16), relative to the value after [`REFERENCE_STEP`] steps.
+#[derive(Clone, Debug, Serialize)]
+pub struct EnergySummary {
+    pub reference: f64,
+    pub r#final: f64,
+    pub max_abs_deviation: f64,
+    pub max_rel_deviation: f64,
+}
+
+/// A position in the plane (x away from the support, y down).
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct Xy {
+    pub x: f64,
+    pub y: f64,
+}
+
+/// Everything a run reports, written by `--summary FILE`.
+#[derive(Clone, Debug, Serialize)]
+pub struct Summary {
+    pub method: MethodKind,
+    /// The scene itself, for the text (the JSON has its name and angle).
+    #[serde(skip)]
+    pub initial: Scene,
+    pub scene: &'static str,
+    pub segments: usize,
+    pub dt: f64,
+    pub angle_deg: f64,
+    pub duration: f64,
+    pub steps: u64,
+    pub status: Status,
+    pub diverged: Option<Diverged>,
+    pub wall_seconds: f64,
+    pub ns_per_segment_step: f64,
+    pub frames_logged: u64,
+    pub energy: EnergySummary,
+    pub tip: Xy,
+    pub support_tension: f64,
+    /// `[t, x, y]` of the tip at every logged frame.
+    pub tip_samples: Vec<[f64; 3]>,
+    /// Oscillation period from the tip's zero crossings, for the `mode` scene.
+    pub period: Option<f64>,
+    /// Why the recording could not be completed (e.g. the viewer went away), if it could not.
+    pub recording_error: Option<String>,
+}
+
+impl Summary {
+    /// The summary of a run of `plan` that ended in `outcome`. `busy` is the time spent
+    /// computing, `wall` the whole run's.
+    pub fn new(
+        plan: &RunPlan,
+        outcome: &Outcome,
+        tip_samples: TipSamples,
+        busy: Duration,
+        wall: Duration,
+        recording_error: Option<String>,
+    ) -> Self {
+        let status = if outcome.diverged.is_some() {
+            Status::Diverged
+        } else if outcome.cancelled {
+            Status::Interrupted
+        } else {
+            Status::Ok
+        };
+        let samples: Vec<[f64; 3]> = tip_samples.0.into();
+        let period = match plan.scene {
+            Scene::Mode { .. } => {
+                analysis::period_from_zero_crossings(samples.iter().map(|s| (s[0], s[1])))
+            }
+            Scene::Release { .. } => None,
+        };
+        let segment_steps = (outcome.steps as f64 * plan.segments as f64).max(1.0);
+        Self {
+            method: plan.method,
+            initial: plan.scene,
+            scene: plan.scene.name(),
+            segments: plan.segments,
+            dt: plan.dt,
+            angle_deg: plan.angle_deg(),
+            duration: plan.duration,
+            steps: outcome.steps,
+            status,
+            diverged: outcome.diverged.clone(),
+            wall_seconds: wall.as_secs_f64(),
+            ns_per_segment_step: busy.as_secs_f64() * 1e9 / segment_steps,
+            frames_logged: outcome.frames,
+            energy: EnergySummary {
+                reference: outcome.energy_reference,
+                r#final: outcome.energy_final,
+                max_abs_deviation: outcome.max_abs_deviation,
+                max_rel_deviation: outcome.max_rel_deviation(),
+            },
+            tip: Xy {
+                x: outcome.tip.x,
+                y: outcome.tip.y,
+            },
+            support_tension: outcome.support_tension,
+            tip_samples: samples,
+            period,
+            recording_error,
+        }
+    }
+
+    /// A few lines for a person at the terminal.
+    pub fn human(&self) -> String {
+        let status = match (&self.status, &self.diverged) {
+            (Status::Diverged, Some(d)) => format!("DIVERGED: {d}"),
+            (Status::Interrupted, _) => "interrupted".to_owned(),
+            _ => "ok".to_owned(),
+        };
+        let scene = self.initial;
+        let mut text = format!(
+            "rope: {method}, {scene}, N = {n}, k = {dt:.3e}: {steps} steps to t = {t:.4} ({status})\n",
+            method = self.method,
+            n = self.segments,
+            dt = self.dt,
+            steps = self.steps,
+            t = self.steps as f64 * self.dt,
+        );
+        text += &format!(
+            "  energy: E_ref = {:.6} (after step {REFERENCE_STEP}), final {:.6}, max deviation {:.3e} ({:.3e} relative)\n",
+            self.energy.reference,
+            self.energy.r#final,
+            self.energy.max_abs_deviation,
+            self.energy.max_rel_deviation
+        );
+        text += &format!(
+            "  tip at ({:.5}, {:.5}), support tension F_0 = {:.4}\n",
+            self.tip.x, self.tip.y, self.support_tension
+        );
+        if let Some(period) = self.period {
+            text += &format!(
+                "  period {period:.4} (angular frequency {:.4})\n",
+                std::f64::consts::TAU / period
+            );
+        }
+        text += &format!(
+            "  {:.3} s wall, {:.1} ns per segment-step, {} frames logged",
+            self.wall_seconds, self.ns_per_segment_step, self.frames_logged
+        );
+        text
+    }
+}

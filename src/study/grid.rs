@@ -1,0 +1,203 @@
+//! The study's grid: methods × segments × time steps, each cell one run measured for
+//! stability, energy deviation and CPU cost (errors against the reference come later).
+//! The grid runs in parallel (rayon); each run's cost is its own thread's CPU time.
+
+use crate::methods::error_model::ErrorModel;
+use crate::methods::{MethodKind, Observation};
+use crate::model::Scene;
+use crate::model::geometry::{self, Point};
+use crate::run::simulate;
+use rayon::prelude::*;
+
+/// Points along the string (s = 0, 0.1, …, 1) where shapes are compared.
+pub const SHAPE_POINTS: usize = 11;
+
+/// What to run.
+#[derive(Clone, Debug)]
+pub struct Spec {
+    pub scene: Scene,
+    pub duration: f64,
+    pub methods: Vec<MethodKind>,
+    pub segments: Vec<usize>,
+    pub dts: Vec<f64>,
+}
+
+impl Spec {
+    /// The time step actually run for a nominal `dt`: the nearest that divides the duration
+    /// into whole steps, so that every run ends exactly at the final time.
+    pub fn snap(&self, dt: f64) -> f64 {
+        self.duration / (self.duration / dt).round().max(1.0)
+    }
+
+    /// The grid's runs, the most expensive first (so the parallel tail is short).
+    pub fn cells(&self) -> Vec<(MethodKind, usize, f64)> {
+        let mut cells: Vec<_> = self
+            .methods
+            .iter()
+            .flat_map(|&m| {
+                self.segments
+                    .iter()
+                    .flat_map(move |&n| self.dts.iter().map(move |&dt| (m, n, self.snap(dt))))
+            })
+            .collect();
+        let cost = |&(m, n, dt): &(MethodKind, usize, f64)| {
+            m.descriptor().ns_per_segment_step * n as f64 / dt
+        };
+        cells.sort_by(|a, b| cost(b).total_cmp(&cost(a)));
+        cells
+    }
+}
+
+/// How a run ended.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Status {
+    Ok,
+    /// Blew up at `time`, for `reason`.
+    Diverged {
+        time: f64,
+        reason: String,
+    },
+    /// The method cannot start from this state (e.g. the seed scheme at the horizontal).
+    Refused {
+        reason: String,
+    },
+}
+
+impl Status {
+    /// The CSV word for it.
+    pub fn word(&self) -> &'static str {
+        match self {
+            Self::Ok => "ok",
+            Self::Diverged { .. } => "diverged",
+            Self::Refused { .. } => "refused",
+        }
+    }
+
+    /// Its colour on the stability map, in charts and in the recording alike.
+    pub fn rgb(&self) -> [u8; 3] {
+        match self {
+            Self::Ok => [30, 150, 60],
+            Self::Diverged { .. } => [210, 40, 40],
+            Self::Refused { .. } => [120, 120, 120],
+        }
+    }
+}
+
+/// One run's measurements.
+#[derive(Clone, Debug)]
+pub struct Row {
+    pub method: MethodKind,
+    pub segments: usize,
+    pub dt: f64,
+    pub status: Status,
+    /// max |E − E(step 10)| / |E|, the report's criterion.
+    pub energy_deviation: Option<f64>,
+    /// Tip position at the final time against the reference.
+    pub tip_error: Option<f64>,
+    /// RMS distance of the shape (s = 0, 0.1, …, 1) from the reference's.
+    pub shape_error: Option<f64>,
+    pub cpu_seconds: f64,
+    pub ns_per_segment_step: f64,
+    /// Final tip and shape (for the reference and for charts).
+    pub tip: Option<Point>,
+    pub shape: Option<Vec<Point>>,
+}
+
+/// Positions at s = 0, 0.1, …, 1 along the string with segment angles `angles`.
+pub fn shape(angles: &[f64]) -> Vec<Point> {
+    let mut nodes = Vec::with_capacity(angles.len() + 1);
+    geometry::nodes(angles, &mut nodes);
+    let n = angles.len();
+    (0..SHAPE_POINTS)
+        .map(|j| {
+            let s = j as f64 / (SHAPE_POINTS - 1) as f64 * n as f64;
+            let i = (s.floor() as usize).min(n - 1);
+            let frac = s - i as f64;
+            nodes[i] + frac * (nodes[i + 1] - nodes[i])
+        })
+        .collect()
+}
+
+/// Runs one cell of the grid and measures it (errors are filled in later, against the
+/// reference).
+pub fn run_cell(scene: &Scene, duration: f64, method: MethodKind, segments: usize, dt: f64) -> Row {
+    let mut row = Row {
+        method,
+        segments,
+        dt,
+        status: Status::Ok,
+        energy_deviation: None,
+        tip_error: None,
+        shape_error: None,
+        cpu_seconds: 0.0,
+        ns_per_segment_step: 0.0,
+        tip: None,
+        shape: None,
+    };
+    let mut solver = match method.build(scene, segments, dt) {
+        Ok(solver) => solver,
+        Err(err) => {
+            row.status = Status::Refused {
+                reason: err.to_string(),
+            };
+            return row;
+        }
+    };
+    let started = cpu_time::ThreadTime::now();
+    let outcome = simulate::run_to(solver.as_mut(), duration);
+    row.cpu_seconds = started.elapsed().as_secs_f64();
+    row.ns_per_segment_step =
+        row.cpu_seconds * 1e9 / (outcome.steps.max(1) as f64 * segments as f64);
+    if let Some(d) = outcome.diverged {
+        row.status = Status::Diverged {
+            time: d.time,
+            reason: d.reason,
+        };
+        return row;
+    }
+    row.energy_deviation = Some(outcome.max_rel_deviation());
+    let mut obs = Observation::default();
+    solver.observe(&mut obs);
+    row.tip = Some(outcome.tip);
+    row.shape = Some(shape(&obs.angle));
+    row
+}
+
+/// Runs every cell in parallel; `progress` is called after each.
+pub fn run_grid(spec: &Spec, progress: impl Fn() + Sync) -> Vec<Row> {
+    let mut rows: Vec<Row> = spec
+        .cells()
+        .into_par_iter()
+        .with_max_len(1) // one run per task, so that stealing balances runs of unequal cost
+        .map(|(m, n, dt)| {
+            let row = run_cell(&spec.scene, spec.duration, m, n, dt);
+            progress();
+            row
+        })
+        .collect();
+    rows.sort_by(|a, b| {
+        (a.method.name(), a.segments)
+            .cmp(&(b.method.name(), b.segments))
+            .then(a.dt.total_cmp(&b.dt))
+    });
+    rows
+}
+
+/// Fits C h^p to the tip errors of the `ok` runs of `method` with N ≥ `min_segments`, taking
+/// at each N the run with the smallest time step (so that the error is the spatial one).
+pub fn fit(rows: &[Row], method: MethodKind, min_segments: usize) -> Option<ErrorModel> {
+    let mut segments: Vec<usize> = rows
+        .iter()
+        .filter(|r| r.method == method && r.segments >= min_segments)
+        .map(|r| r.segments)
+        .collect();
+    segments.sort_unstable();
+    segments.dedup();
+    ErrorModel::fit(segments.into_iter().filter_map(|n| {
+        rows.iter()
+            .filter(|r| r.method == method && r.segments == n && r.status == Status::Ok)
+            .filter_map(|r| r.tip_error.map(|e| (r.dt, e)))
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+            .map(|(_, e)| (n, e))
+    }))
+}
