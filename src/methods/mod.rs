@@ -17,6 +17,7 @@
 
 pub mod chain;
 pub mod error_model;
+pub(crate) mod joint_forces;
 pub mod method;
 pub mod registry;
 pub mod seed;
