@@ -6,6 +6,7 @@ use crate::methods::MethodKind;
 use crate::methods::tolerance::{self, Choice};
 use crate::model::Scene;
 use crate::recording::destinations::OutputArgs;
+use crate::run::cost::{self, Cost, Limits};
 use crate::run::{RunConfig, RunPlan};
 use crate::study::Spec;
 use std::path::PathBuf;
@@ -121,13 +122,22 @@ pub struct StudyArgs {
     /// Also put the charts' data into this Rerun recording.
     #[arg(long, value_name = "FILE.rrd")]
     pub save: Option<PathBuf>,
+
+    /// Memory the study may use, e.g. 4GB or 50% [default: what the machine has available].
+    #[arg(long, value_name = "SIZE", value_parser = parse_memory_size)]
+    pub max_memory: Option<MemorySize>,
+
+    /// Start the study even if it is predicted to take more than a day of CPU.
+    #[arg(long)]
+    pub yes: bool,
 }
 
-/// A validated study: the grid and the reference's finest N.
+/// A validated study: the grid, the reference's finest N, and what it will cost.
 #[derive(Clone, Debug)]
 pub struct StudyPlan {
     pub spec: Spec,
     pub reference_segments: usize,
+    pub cost: Cost,
 }
 
 impl StudyArgs {
@@ -163,15 +173,35 @@ impl StudyArgs {
         if reference_segments < 4 || !reference_segments.is_multiple_of(2) {
             return Err(ConfigError::ReferenceSegments(reference_segments));
         }
+        let spec = Spec {
+            scene,
+            duration: self.duration,
+            methods: self.methods.clone(),
+            segments: self.segments.clone(),
+            dts,
+        };
+        let cost = spec.cost(reference_segments, rayon::current_num_threads());
+        let limits = Limits {
+            max_memory: self.max_memory.map(|m| m.bytes),
+            yes: self.yes,
+        };
+        if cost.bytes > limits.memory() {
+            return Err(ConfigError::StudyTooMuchMemory {
+                needed: cost::bytes_text(cost.bytes),
+                limit: cost::bytes_text(limits.memory()),
+                whose: limits.whose_memory(),
+            });
+        }
+        if cost.seconds > cost::LONG_SECONDS && !limits.yes {
+            return Err(ConfigError::StudyTooLong {
+                cost: cost::seconds_text(cost.seconds),
+                cells: spec.cells().len(),
+            });
+        }
         Ok(StudyPlan {
-            spec: Spec {
-                scene,
-                duration: self.duration,
-                methods: self.methods.clone(),
-                segments: self.segments.clone(),
-                dts,
-            },
+            spec,
             reference_segments,
+            cost,
         })
     }
 }
@@ -238,6 +268,15 @@ pub struct RunArgs {
     /// Run a seed time step past the estimated stability limit anyway (to watch it fail).
     #[arg(long)]
     pub allow_unstable: bool,
+
+    /// Memory the run may use, e.g. 4GB or 50% [default: what the machine has available].
+    /// A run predicted to need more is refused before it starts.
+    #[arg(long, value_name = "SIZE", value_parser = parse_memory_size)]
+    pub max_memory: Option<MemorySize>,
+
+    /// Start a finite run even if it is predicted to take more than a day of CPU.
+    #[arg(long)]
+    pub yes: bool,
 
     #[command(flatten)]
     pub output: OutputArgs,
@@ -312,6 +351,7 @@ impl RunArgs {
             log_rate: self.log_rate,
             realtime: self.realtime,
             allow_unstable: self.allow_unstable,
+            limits: self.limits(),
         };
         let (config, choice) = match self.tolerance {
             None => (asked, None),
@@ -332,7 +372,8 @@ impl RunArgs {
         })
     }
 
-    /// What `--tolerance EPS` chooses for `scene`.
+    /// What `--tolerance EPS` chooses for `scene`: the cheapest choice whose run fits in
+    /// [`tolerance::MAX_SECONDS`] of CPU and the memory it may use.
     fn choose(&self, eps: f64, scene: &Scene) -> Result<Choice, ConfigError> {
         scene.validate()?;
         if !(eps.is_finite() && eps > 0.0) {
@@ -341,15 +382,94 @@ impl RunArgs {
         if self.duration.is_infinite() {
             return Err(ConfigError::ToleranceEndless(eps));
         }
-        let choice = tolerance::choose(eps, self.duration.max(0.0), scene)
-            .ok_or(ConfigError::Tolerance(eps))?;
-        if choice.predicted_seconds > tolerance::MAX_SECONDS {
-            return Err(ConfigError::ToleranceTooCostly {
-                tolerance: eps,
-                segments: choice.segments,
-                seconds: choice.predicted_seconds,
-            });
+        let duration = self.duration.max(0.0);
+        let limits = self.limits();
+        let fits = |method, segments, dt| {
+            let cost = Cost::of_run(method, segments, dt, duration, self.log_rate);
+            cost.bytes <= limits.memory() && cost.seconds <= tolerance::MAX_SECONDS
+        };
+        if let Some(choice) = tolerance::choose(eps, duration, scene, fits) {
+            return Ok(choice);
         }
-        Ok(choice)
+        let best = tolerance::tightest(duration, scene, fits)
+            .ok_or(ConfigError::ToleranceNoMethod(eps))?;
+        let cost = Cost::of_run(best.method, best.segments, best.dt, duration, self.log_rate);
+        Err(ConfigError::ToleranceUnreachable {
+            tolerance: eps,
+            limit: format!(
+                "{} of CPU and {} of memory",
+                cost::seconds_text(tolerance::MAX_SECONDS),
+                cost::bytes_text(limits.memory())
+            ),
+            tightest: best.predicted_error,
+            method: best.method.name(),
+            segments: best.segments,
+            cost: format!(
+                "{} of CPU, {}",
+                cost::seconds_text(cost.seconds),
+                cost::bytes_text(cost.bytes)
+            ),
+        })
     }
+
+    /// The limits the flags set.
+    pub fn limits(&self) -> Limits {
+        Limits {
+            max_memory: self.max_memory.map(|m| m.bytes),
+            yes: self.yes,
+        }
+    }
+}
+
+/// `--max-memory SIZE`: a size in bytes, as the user wrote it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MemorySize {
+    pub bytes: u64,
+}
+
+/// `--max-memory SIZE`: 512MB, 8GB, or a share of the machine's memory (50%).
+fn parse_memory_size(text: &str) -> Result<MemorySize, String> {
+    match rerun::MemoryLimit::parse(text) {
+        Ok(limit) if !limit.is_unlimited() && limit.as_bytes() > 0 => Ok(MemorySize {
+            bytes: limit.as_bytes(),
+        }),
+        Ok(_) => Err(format!(
+            "{text}: give a size above zero, e.g. 512MB, 8GB or 50%"
+        )),
+        Err(err) => Err(format!("{err}; give e.g. 512MB, 8GB or 50%")),
+    }
+}
+
+/// Checks that the file `path` that flag `flag` names can be written, so that a path where
+/// nothing can be written is refused before a run, not after it. Leaves no file behind (an
+/// existing one is opened for appending, and kept as it was).
+pub fn check_writable_file(flag: &'static str, path: &std::path::Path) -> Result<(), ConfigError> {
+    let existed = path.exists();
+    std::fs::OpenOptions::new()
+        .append(true)
+        .create(true)
+        .open(path)
+        .map_err(|err| ConfigError::OutputPath {
+            flag,
+            path: path.to_owned(),
+            reason: err.to_string(),
+        })?;
+    if !existed {
+        std::fs::remove_file(path).ok();
+    }
+    Ok(())
+}
+
+/// Creates the folder `path` that flag `flag` names (and its parents), and checks that a
+/// file can be written in it.
+pub fn writable_dir(flag: &'static str, path: &std::path::Path) -> Result<(), ConfigError> {
+    let refuse = |err: std::io::Error| ConfigError::OutputPath {
+        flag,
+        path: path.to_owned(),
+        reason: err.to_string(),
+    };
+    std::fs::create_dir_all(path).map_err(refuse)?;
+    let probe = path.join(".rope-write-check");
+    std::fs::write(&probe, b"").map_err(refuse)?;
+    std::fs::remove_file(&probe).map_err(refuse)
 }

@@ -38,12 +38,55 @@ pub enum ConfigError {
     )]
     Tolerance(f64),
     #[error(
-        "tolerance = {tolerance}: would need N = {segments} and about {seconds:.0} CPU seconds; ask for a looser tolerance"
+        "tolerance = {tolerance:e}: no method reaches it within {limit}; the tightest reachable is about {tightest:.1e} (the {method} method at N = {segments}, about {cost}); ask for a looser tolerance"
     )]
-    ToleranceTooCostly {
+    ToleranceUnreachable {
         tolerance: f64,
+        limit: String,
+        tightest: f64,
+        method: &'static str,
         segments: usize,
-        seconds: f64,
+        cost: String,
+    },
+    #[error("tolerance = {0:e}: no method can start from this scene")]
+    ToleranceNoMethod(f64),
+    #[error(
+        "segments = {segments}: the run would need about {needed} of memory, more than the {limit} it may use ({whose}); at most {largest} segments fit"
+    )]
+    TooMuchMemory {
+        segments: usize,
+        needed: String,
+        limit: String,
+        whose: &'static str,
+        largest: usize,
+    },
+    #[error(
+        "duration = {duration:e}: the run is predicted to take about {cost} of CPU ({segments} segments, {steps:.2e} steps), more than a day; at most {longest:.3e} time units fit in a day at this N and k. Lower --duration or --segments, or add --yes to run it anyway"
+    )]
+    TooLong {
+        duration: f64,
+        cost: String,
+        segments: usize,
+        steps: f64,
+        longest: f64,
+    },
+    #[error(
+        "segments: the study is predicted to take about {cost} of CPU ({cells} runs), more than a day; use fewer or smaller --segments, fewer or larger --dts, a shorter --duration, or add --yes"
+    )]
+    StudyTooLong { cost: String, cells: usize },
+    #[error(
+        "segments: the study would need about {needed} of memory, more than the {limit} it may use ({whose}); use smaller --segments or --reference-segments"
+    )]
+    StudyTooMuchMemory {
+        needed: String,
+        limit: String,
+        whose: &'static str,
+    },
+    #[error("{flag} = {}: cannot write there ({reason})", path.display())]
+    OutputPath {
+        flag: &'static str,
+        path: std::path::PathBuf,
+        reason: String,
     },
     #[error(
         "tolerance = {0}: is the tip error at the final time, and an endless run (--duration inf) has none; give a finite --duration, or choose --method, --segments and --dt"

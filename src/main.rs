@@ -3,11 +3,12 @@
 
 use anyhow::Context as _;
 use clap::Parser as _;
-use rope::cli::{Cli, Command, Planned, RunArgs, StudyArgs};
-use rope::error::ConfigError;
+use rope::cli::{Cli, Command, Planned, RunArgs, StudyArgs, check_writable_file, writable_dir};
 use rope::recording::destinations::Output;
+use rope::recording::error::OutputError;
 use rope::recording::logger::RopeLogger;
 use rope::recording::viewer_sinks::ViewerLink;
+use rope::run::cost;
 use rope::run::progress::{Counter, Progress};
 use rope::run::{Status, Summary};
 use std::process::ExitCode;
@@ -34,7 +35,7 @@ fn main() -> ExitCode {
 }
 
 /// Reports a configuration that cannot run.
-fn bad_input(err: &ConfigError) -> ExitCode {
+fn bad_input(err: &dyn std::fmt::Display) -> ExitCode {
     eprintln!("rope: bad input: {err}");
     ExitCode::from(EXIT_BAD_INPUT)
 }
@@ -46,11 +47,22 @@ fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
         Err(err) => return Ok(bad_input(&err)),
     };
     announce(args, &plans);
+    if let Some(Err(err)) = args
+        .summary
+        .as_deref()
+        .map(|p| check_writable_file("summary", p))
+    {
+        return Ok(bad_input(&err));
+    }
     let stop = stop_on_interrupt()?;
-    let output = args
+    let output = match args
         .output
         .open("rope", rope::recording::blueprint::blueprint())
-        .context("opening the Rerun recording")?;
+    {
+        Ok(output) => output,
+        Err(err @ OutputError::Save { .. }) => return Ok(bad_input(&err)),
+        Err(err) => return Err(err).context("opening the Rerun recording"),
+    };
     if let Some(url) = &output.serving {
         eprintln!(
             "rope: serving at {url}: any number of viewers can join, at any time, with `rerun --connect {url}`, and get the history first; memory is kept within {} by dropping the oldest",
@@ -82,8 +94,18 @@ fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
 }
 
 /// Says what was chosen for the user: the tolerance rule's choice, a default step, a default
-/// method for an endless run.
+/// method for an endless run, and the predicted cost of a run that takes more than a minute.
 fn announce(args: &RunArgs, plans: &[Planned]) {
+    for Planned { plan, .. } in plans {
+        if plan.cost.seconds > cost::ANNOUNCE_SECONDS {
+            eprintln!(
+                "rope: {} is predicted to take about {} of CPU and {} of memory",
+                plan.scene,
+                cost::seconds_text(plan.cost.seconds),
+                cost::bytes_text(plan.cost.bytes)
+            );
+        }
+    }
     let several = plans.len() > 1;
     for Planned { plan, choice } in plans {
         let Some(choice) = choice else { continue };
@@ -233,7 +255,22 @@ fn study(args: &StudyArgs) -> anyhow::Result<ExitCode> {
         Ok(plan) => plan,
         Err(err) => return Ok(bad_input(&err)),
     };
+    if let Err(err) = writable_dir("out", &args.out) {
+        return Ok(bad_input(&err));
+    }
+    if let Some(Err(err)) = args.save.as_deref().map(|p| check_writable_file("save", p)) {
+        return Ok(bad_input(&err));
+    }
     let spec = &plan.spec;
+    if plan.cost.seconds > cost::ANNOUNCE_SECONDS {
+        eprintln!(
+            "rope study: predicted to take about {} of CPU ({} on {} threads) and {} of memory",
+            cost::seconds_text(plan.cost.seconds),
+            cost::seconds_text(plan.cost.seconds / rayon::current_num_threads() as f64),
+            rayon::current_num_threads(),
+            cost::bytes_text(plan.cost.bytes)
+        );
+    }
     let cells = (spec.methods.len() * spec.segments.len() * spec.dts.len()) as u64;
     eprintln!(
         "rope study: {cells} runs ({} methods × {} N × {} k) on {} threads, reference at N = {}",

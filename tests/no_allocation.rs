@@ -1,5 +1,6 @@
-//! A step allocates nothing: counted by a global allocator wrapped around the system one,
-//! counting only on the thread that measures (the test harness allocates on its own).
+//! A step allocates nothing, and refusing an impossible run allocates nothing of its size:
+//! counted by a global allocator wrapped around the system one, counting only on the thread
+//! that measures (the test harness allocates on its own).
 
 use rope::methods::MethodKind;
 use rope::model::Scene;
@@ -13,12 +14,14 @@ thread_local! {
     /// const-initialised, so touching them never allocates.
     static MEASURING: Cell<bool> = const { Cell::new(false) };
     static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
+    static LARGEST: Cell<usize> = const { Cell::new(0) };
 }
 
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
         if MEASURING.try_with(Cell::get).unwrap_or(false) {
             let _ = ALLOCATIONS.try_with(|n| n.set(n.get() + 1));
+            let _ = LARGEST.try_with(|n| n.set(n.get().max(layout.size())));
         }
         unsafe { System.alloc(layout) }
     }
@@ -62,5 +65,37 @@ fn steps_of_every_method_allocate_nothing() {
         });
         assert_eq!(n, 0, "{kind}: {n} allocations in 500 steps");
         assert!(energy.is_finite());
+    }
+}
+
+/// The largest single allocation made on this thread while `work` runs, in bytes.
+fn largest_allocation_in(work: impl FnOnce()) -> usize {
+    LARGEST.with(|n| n.set(0));
+    allocations_in(work);
+    LARGEST.with(Cell::get)
+}
+
+#[test]
+fn refusing_runs_too_large_for_the_machine_allocates_nothing_of_their_size() {
+    use clap::Parser as _;
+    use rope::cli::{Cli, Command};
+    for flags in [
+        &["--segments", "100000000"][..],
+        &["--segments", "18446744073709551615"][..],
+        &["--tolerance", "1e-12"][..],
+        &["--duration", "1e300"][..],
+    ] {
+        let mut args = vec!["rope", "run"];
+        args.extend_from_slice(flags);
+        let Command::Run(run) = Cli::try_parse_from(&args).unwrap().command else {
+            unreachable!("a run");
+        };
+        let mut refused = None;
+        let largest = largest_allocation_in(|| refused = Some(run.plans().is_err()));
+        assert_eq!(refused, Some(true), "{flags:?} must be refused");
+        assert!(
+            largest < 1 << 20,
+            "{flags:?}: allocated {largest} bytes at once"
+        );
     }
 }

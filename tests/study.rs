@@ -125,7 +125,8 @@ fn tolerance_rule_meets_each_tolerance_and_the_looser_one_is_cheaper() {
     let reference = study::reference(&THIRTY, 1.0, 800).unwrap();
     let mut choices = Vec::new();
     for tolerance in [1e-2, 1e-5] {
-        let choice = tolerance::choose(tolerance, 1.0, &THIRTY).expect("a method can do it");
+        let choice =
+            tolerance::choose(tolerance, 1.0, &THIRTY, |_, _, _| true).expect("a method can do it");
         let row = study::run_cell(&THIRTY, 1.0, choice.method, choice.segments, choice.dt);
         let achieved = (row.tip.unwrap() - reference.tip).norm();
         assert!(
@@ -145,17 +146,23 @@ fn tolerance_rule_meets_each_tolerance_and_the_looser_one_is_cheaper() {
 #[test]
 fn a_loose_tolerance_picks_the_seed_scheme_and_a_tight_one_the_chain() {
     assert_eq!(
-        tolerance::choose(1e-1, 1.0, &THIRTY).unwrap().method,
+        tolerance::choose(1e-1, 1.0, &THIRTY, |_, _, _| true)
+            .unwrap()
+            .method,
         MethodKind::Seed
     );
     assert_eq!(
-        tolerance::choose(1e-4, 1.0, &THIRTY).unwrap().method,
+        tolerance::choose(1e-4, 1.0, &THIRTY, |_, _, _| true)
+            .unwrap()
+            .method,
         MethodKind::Chain
     );
     // From the horizontal only the chain can start.
     let horizontal = Scene::Release { angle_deg: 0.0 };
     assert_eq!(
-        tolerance::choose(1e-1, 1.0, &horizontal).unwrap().method,
+        tolerance::choose(1e-1, 1.0, &horizontal, |_, _, _| true)
+            .unwrap()
+            .method,
         MethodKind::Chain
     );
 }

@@ -138,6 +138,8 @@ pub struct Descriptor {
     pub refuses_unstable_step: bool,
     /// CPU cost of one step per segment, in ns (`cargo bench --bench step`, N = 1000).
     pub ns_per_segment_step: f64,
+    /// Memory of the method's state per segment, in bytes (what its vectors hold).
+    pub bytes_per_segment: usize,
     /// Tip error at the final time ≈ C h^p, fitted by `rope study` (30° release, t = 1).
     pub error_model: ErrorModel,
     /// Chart colours: its coarsest and its finest runs, shades between.

@@ -25,6 +25,8 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     default_step_fraction: 0.5,
     refuses_unstable_step: true,
     ns_per_segment_step: 10.2,
+    // φ at three times, the tension, and the sweep's two scratch vectors.
+    bytes_per_segment: 6 * 8,
     error_model: ErrorModel {
         constant: 1.04,
         order: 1.00,

@@ -26,27 +26,79 @@ pub struct Choice {
 }
 
 /// The cheapest method, N and k whose predicted tip error is at most `tolerance`, among the
-/// methods that can start from `scene`. Each method's N comes from its error model (aiming
+/// methods that can start from `scene` and whose run `fits` (the caller's limits on time and
+/// memory, asked as `fits(method, N, k)`). Each method's N comes from its error model (aiming
 /// at `tolerance / SAFETY`), its k is the method's default for that N.
-pub fn choose(tolerance: f64, duration: f64, scene: &Scene) -> Option<Choice> {
-    MethodKind::ALL
-        .iter()
-        .filter_map(|&method| {
-            let d = method.descriptor();
-            let segments = d
-                .error_model
-                .segments_for(tolerance / SAFETY)
-                .max(MIN_SEGMENTS);
-            let dt = d.default_dt(segments);
-            method.build(scene, segments, dt).ok()?;
-            let steps = (duration / dt).round().max(1.0);
-            Some(Choice {
-                method,
-                segments,
-                dt,
-                predicted_error: d.error_model.predict(segments),
-                predicted_seconds: d.ns_per_segment_step * 1e-9 * segments as f64 * steps,
-            })
+pub fn choose(
+    tolerance: f64,
+    duration: f64,
+    scene: &Scene,
+    fits: impl Fn(MethodKind, usize, f64) -> bool,
+) -> Option<Choice> {
+    startable(scene)
+        .map(|method| {
+            let model = method.descriptor().error_model;
+            choice(method, model.segments_for(tolerance / SAFETY), duration)
         })
+        .filter(|c| fits(c.method, c.segments, c.dt))
         .min_by(|a, b| a.predicted_seconds.total_cmp(&b.predicted_seconds))
+}
+
+/// The most accurate run any method can make from `scene` within what `fits`: for each
+/// method the largest N that fits (by bisection), then the smallest predicted error.
+pub fn tightest(
+    duration: f64,
+    scene: &Scene,
+    fits: impl Fn(MethodKind, usize, f64) -> bool,
+) -> Option<Choice> {
+    startable(scene)
+        .filter_map(|method| {
+            let fits_at = |n: usize| fits(method, n, method.default_dt(n));
+            if !fits_at(MIN_SEGMENTS) {
+                return None;
+            }
+            let (mut good, mut bad) = (MIN_SEGMENTS, MIN_SEGMENTS);
+            while fits_at(bad) && bad < 1 << 40 {
+                good = bad;
+                bad *= 2;
+            }
+            while bad - good > 1 {
+                let mid = good + (bad - good) / 2;
+                if fits_at(mid) { good = mid } else { bad = mid }
+            }
+            Some(choice(method, good, duration))
+        })
+        .min_by(|a, b| a.predicted_error.total_cmp(&b.predicted_error))
+}
+
+/// The methods that can start from `scene`.
+fn startable(scene: &Scene) -> impl Iterator<Item = MethodKind> + '_ {
+    MethodKind::ALL
+        .into_iter()
+        .filter(move |&method| can_start(method, scene))
+}
+
+/// Whether `method` can start from `scene` (independent of N: asked at its fewest segments,
+/// so nothing the size of a run is allocated).
+fn can_start(method: MethodKind, scene: &Scene) -> bool {
+    let d = method.descriptor();
+    let segments = d.min_segments.max(MIN_SEGMENTS);
+    method
+        .build(scene, segments, d.default_dt(segments))
+        .is_ok()
+}
+
+/// `method` at `segments` (at least [`MIN_SEGMENTS`]) and its default step, to `duration`.
+fn choice(method: MethodKind, segments: usize, duration: f64) -> Choice {
+    let d = method.descriptor();
+    let segments = segments.max(MIN_SEGMENTS);
+    let dt = d.default_dt(segments);
+    let steps = (duration / dt).round().max(1.0);
+    Choice {
+        method,
+        segments,
+        dt,
+        predicted_error: d.error_model.predict(segments),
+        predicted_seconds: d.ns_per_segment_step * 1e-9 * segments as f64 * steps,
+    }
 }

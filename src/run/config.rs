@@ -1,6 +1,7 @@
 //! What a run is asked to do ([`RunConfig`], every default documented) and what it will do
 //! once checked ([`RunPlan`], validated once, every value resolved).
 
+use super::cost::{self, Cost, Limits};
 use crate::error::ConfigError;
 use crate::methods::{Method, MethodKind};
 use crate::model::Scene;
@@ -28,6 +29,9 @@ pub struct RunConfig {
     /// Run a time step past the stability limit of a method that refuses one, to watch it
     /// fail. Default: false.
     pub allow_unstable: bool,
+    /// The memory the run may use, and whether a run longer than a day may start. Default:
+    /// the machine's available memory, and no.
+    pub limits: Limits,
 }
 
 impl Default for RunConfig {
@@ -41,6 +45,7 @@ impl Default for RunConfig {
             log_rate: 60.0,
             realtime: None,
             allow_unstable: false,
+            limits: Limits::default(),
         }
     }
 }
@@ -55,10 +60,13 @@ pub struct RunPlan {
     pub duration: f64,
     pub log_rate: f64,
     pub realtime: Option<f64>,
+    /// What the run is predicted to cost.
+    pub cost: Cost,
 }
 
 impl RunConfig {
-    /// Checks every parameter, naming the one that is wrong and what would work.
+    /// Checks every parameter, naming the one that is wrong and what would work. Nothing of
+    /// the size of the run is allocated here: its cost is checked against the limits first.
     pub fn validate(&self) -> Result<RunPlan, ConfigError> {
         let method = self.method;
         let segments = self.segments;
@@ -76,8 +84,15 @@ impl RunConfig {
         {
             return Err(ConfigError::Realtime(speed));
         }
-        // Building the method validates the scene, segments and dt as the method needs.
-        method.build(&self.scene, segments, dt)?;
+        let d = method.descriptor();
+        self.scene.validate()?;
+        crate::methods::method::validate_segments(d, segments)?;
+        crate::methods::method::validate_dt(dt)?;
+        let cost = Cost::of_run(method, segments, dt, self.duration, self.log_rate);
+        self.check_cost(&cost, dt)?;
+        // Whether the method can start from the scene does not depend on N: building it at
+        // its fewest segments says so without allocating the run.
+        method.build(&self.scene, d.min_segments, dt)?;
         let limit = method.stability_limit(segments);
         if method.descriptor().refuses_unstable_step && dt > limit && !self.allow_unstable {
             return Err(ConfigError::UnstableTimeStep {
@@ -101,7 +116,33 @@ impl RunConfig {
             duration: self.duration,
             log_rate: self.log_rate,
             realtime: self.realtime,
+            cost,
         })
+    }
+
+    /// Refuses a run whose memory exceeds the limit, or a finite one longer than a day
+    /// without `--yes`.
+    fn check_cost(&self, cost: &Cost, dt: f64) -> Result<(), ConfigError> {
+        let limit = self.limits.memory();
+        if cost.bytes > limit {
+            return Err(ConfigError::TooMuchMemory {
+                segments: self.segments,
+                needed: cost::bytes_text(cost.bytes),
+                limit: cost::bytes_text(limit),
+                whose: self.limits.whose_memory(),
+                largest: Cost::segments_within(self.method, self.log_rate, limit),
+            });
+        }
+        if self.duration.is_finite() && cost.seconds > cost::LONG_SECONDS && !self.limits.yes {
+            return Err(ConfigError::TooLong {
+                duration: self.duration,
+                cost: cost::seconds_text(cost.seconds),
+                segments: self.segments,
+                steps: (self.duration / dt).ceil(),
+                longest: self.duration * cost::LONG_SECONDS / cost.seconds,
+            });
+        }
+        Ok(())
     }
 }
 

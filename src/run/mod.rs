@@ -4,6 +4,7 @@
 //! ([`summary`], [`progress`]). Nothing here knows where frames end up.
 
 pub mod config;
+pub mod cost;
 pub mod pipeline;
 pub mod progress;
 pub mod simulate;
@@ -11,6 +12,7 @@ pub mod sink;
 pub mod summary;
 
 pub use config::{RunConfig, RunPlan};
+pub use cost::{Cost, Limits};
 pub use simulate::Frame;
 pub use sink::FrameSink;
 pub use summary::{Status, Summary};
