@@ -24,7 +24,19 @@ rope=target/release/rope
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
 
-pick() { local values=("$@"); echo "${values[RANDOM % ${#values[@]}]}"; }
+# Sets $REPLY to one of its arguments. Not `$(…)`: bash reseeds RANDOM in a subshell, and
+# the run would no longer follow from the seed.
+pick() {
+    local values=("$@")
+    REPLY="${values[RANDOM % ${#values[@]}]}"
+}
+# Adds a flag with a value picked from the rest of the arguments.
+add() {
+    local flag="$1"
+    shift
+    pick "$@"
+    args+=("$flag" "$REPLY")
+}
 numbers=(0 -1 1 2 3 0.5 1e-3 1e-9 1e300 -1e300 inf -inf nan NaN 1e-320 x "" 30 90 91 45.5)
 counts=(0 1 2 3 4 5 10 100 1000 10000 100000000 18446744073709551615 -3 1.5 x "")
 # Short enough to finish in seconds even at 10⁵ segments; `inf` would never end.
@@ -37,24 +49,29 @@ declare -A exits=()
 started=$SECONDS
 for ((r = 1; r <= runs; r++)); do
     # --yes lets a run of years start, as asked: it goes only with a run that ends.
-    yes=$((RANDOM % 8 == 0))
-    if ((yes)); then
-        args=(run --save "$scratch/x.rrd" --yes --duration "$(pick 0 0.001 0.01)")
-        ((RANDOM % 2)) && args+=(--dt "$(pick 1e-3 1e-4 5e-3)")
+    args=(run --save "$scratch/x.rrd")
+    if ((RANDOM % 8 == 0)); then
+        args+=(--yes)
+        add --duration 0 0.001 0.01
+        ((RANDOM % 2)) && add --dt 1e-3 1e-4 5e-3
     else
-        args=(run --save "$scratch/x.rrd" --duration "$(pick "${durations[@]}")")
-        ((RANDOM % 2)) && args+=(--dt "$(pick "${steps[@]}")")
+        add --duration "${durations[@]}"
+        ((RANDOM % 2)) && add --dt "${steps[@]}"
     fi
-    ((RANDOM % 2)) && args+=(--segments "$(pick "${counts[@]}")")
-    ((RANDOM % 3 == 0)) && args+=(--angle "$(pick "${numbers[@]}" "0,30" "30,60,90")")
-    ((RANDOM % 3 == 0)) && args+=(--method "$(pick seed chain rattle "")")
-    ((RANDOM % 4 == 0)) && args+=(--scene mode --mode-number "$(pick 0 1 2 4 5 "1,2")" --amplitude "$(pick "${numbers[@]}")")
-    ((RANDOM % 4 == 0)) && args+=(--log-rate "$(pick "${numbers[@]}" 60 1000)")
-    ((RANDOM % 5 == 0)) && args+=(--tolerance "$(pick "${numbers[@]}" 1e-2 1e-4 1e-12)")
-    ((RANDOM % 5 == 0)) && args+=(--realtime "$(pick 100 1000 0 -1 nan)")
-    ((RANDOM % 6 == 0)) && args+=(--loop "$(pick 1 2 0 -1 x)")
-    ((RANDOM % 6 == 0)) && args+=(--max-memory "$(pick 1MB 100MB 64GB 50% 0 x)")
-    ((RANDOM % 6 == 0)) && args+=(--summary "$(pick "$scratch/s.json" /dev/null/s.json)")
+    ((RANDOM % 2)) && add --segments "${counts[@]}"
+    ((RANDOM % 3 == 0)) && add --angle "${numbers[@]}" "0,30" "30,60,90"
+    ((RANDOM % 3 == 0)) && add --method seed chain rattle ""
+    if ((RANDOM % 4 == 0)); then
+        args+=(--scene mode)
+        add --mode-number 0 1 2 4 5 "1,2"
+        add --amplitude "${numbers[@]}"
+    fi
+    ((RANDOM % 4 == 0)) && add --log-rate "${numbers[@]}" 60 1000
+    ((RANDOM % 5 == 0)) && add --tolerance "${numbers[@]}" 1e-2 1e-4 1e-12
+    ((RANDOM % 5 == 0)) && add --realtime 100 1000 0 -1 nan
+    ((RANDOM % 6 == 0)) && add --loop 1 2 0 -1 x
+    ((RANDOM % 6 == 0)) && add --max-memory 1MB 100MB 64GB 50% 0 x
+    ((RANDOM % 6 == 0)) && add --summary "$scratch/s.json" /dev/null/s.json
     ((RANDOM % 8 == 0)) && args+=(--allow-unstable)
     timeout 30 "$rope" "${args[@]}" > /dev/null 2> "$scratch/err"
     code=$?
