@@ -69,6 +69,9 @@ fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
             args.output.server_memory_limit
         );
     }
+    if let Some(page) = &output.web_page {
+        eprintln!("rope: watch it in a browser at {page}");
+    }
     if let Some(link) = output.viewer.clone() {
         watch_viewer(link, output.survives_viewer_loss, Arc::clone(&stop));
     }

@@ -6,19 +6,12 @@
 mod common;
 
 use common::cli::{
-    Recording, Scratch, rope, signal, signal_and_wait, start, stderr_of, summary, wait_for,
+    Recording, Scratch, free_port, rope, signal, signal_and_wait, start, stderr_lines_until,
+    stderr_of, summary, wait_for,
 };
 use rerun::external::re_grpc_client;
 use std::process::Child;
 use std::time::{Duration, Instant};
-
-/// A port on 127.0.0.1 that nothing listens on (just now).
-fn free_port() -> u16 {
-    std::net::TcpListener::bind("127.0.0.1:0")
-        .and_then(|l| l.local_addr())
-        .expect("a free port")
-        .port()
-}
 
 fn url(port: u16) -> String {
     format!("rerun+http://127.0.0.1:{port}/proxy")
@@ -192,30 +185,13 @@ fn endpoint() -> (Child, u16) {
             "--serve-grpc",
             &format!("127.0.0.1:{port}"),
         ]);
-        if says_it_is_serving(&mut endpoint) {
+        if stderr_lines_until(&mut endpoint, "rope: serving at").is_some() {
             return (endpoint, port);
         }
         endpoint.kill().ok();
         endpoint.wait().ok();
     }
     panic!("no endpoint could be started on five ports");
-}
-
-/// Reads `child`'s stderr until it says it is serving (true) or ends (false); a thread goes
-/// on draining the rest.
-fn says_it_is_serving(child: &mut Child) -> bool {
-    use std::io::BufRead as _;
-    let stderr = child.stderr.take().expect("stderr is piped");
-    let (serving, said) = crossbeam_channel::bounded(1);
-    std::thread::spawn(move || {
-        for line in std::io::BufReader::new(stderr).lines() {
-            let Ok(line) = line else { break };
-            if line.contains("rope: serving at") {
-                serving.try_send(()).ok();
-            }
-        }
-    });
-    said.recv_timeout(Duration::from_secs(20)).is_ok()
 }
 
 #[test]

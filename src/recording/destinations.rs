@@ -32,8 +32,12 @@ const PROCESS_BASELINE: u64 = 32_000_000;
 /// The smallest `--server-memory-limit` that leaves the history room.
 const MIN_SERVER_MEMORY: u64 = 64_000_000;
 
+/// Where the web viewer's page is served when `--web` names no address.
+pub const DEFAULT_WEB_PORT: u16 = 9090;
+
 /// Where the recording goes.
 #[derive(Clone, Debug, clap::Args)]
+#[command(group(clap::ArgGroup::new("served").args(["serve_grpc", "web"]).multiple(true)))]
 pub struct OutputArgs {
     /// Start a Rerun viewer and stream to it; the default when no other destination is given.
     /// With --save, the viewer shows the run while the file keeps it.
@@ -52,9 +56,20 @@ pub struct OutputArgs {
     #[arg(long, value_name = "ADDR", num_args = 0..=1, default_missing_value = "127.0.0.1:9876", value_parser = parse_serve_addr, conflicts_with = "spawn")]
     pub serve_grpc: Option<SocketAddr>,
 
+    /// Serve Rerun's web viewer at ADDR (IP:PORT, IP or PORT) [default: 127.0.0.1:9090], the
+    /// run streaming to it: watch in a browser, with nothing to install. Implies --serve-grpc
+    /// on the same IP (port 9876 unless --serve-grpc names one). Opens a browser where one
+    /// can open.
+    #[arg(long, value_name = "ADDR", num_args = 0..=1, default_missing_value = "127.0.0.1:9090", value_parser = parse_web_addr, conflicts_with_all = ["spawn", "connect"])]
+    pub web: Option<SocketAddr>,
+
+    /// With --web: print the page's address, and open no browser.
+    #[arg(long, requires = "web")]
+    pub no_browser: bool,
+
     /// Memory the --serve-grpc process may use, its history for late viewers included, e.g.
     /// 512MB, 2GB or 10% (of the machine's memory); beyond it the oldest data is dropped.
-    #[arg(long, value_name = "SIZE", default_value = DEFAULT_SERVER_MEMORY_LIMIT, value_parser = parse_memory_limit, requires = "serve_grpc")]
+    #[arg(long, value_name = "SIZE", default_value = DEFAULT_SERVER_MEMORY_LIMIT, value_parser = parse_memory_limit, requires = "served")]
     pub server_memory_limit: ServerMemoryLimit,
 
     /// Write the recording to FILE.rrd (as well as to a viewer, if one is named).
@@ -62,7 +77,7 @@ pub struct OutputArgs {
     pub save: Option<PathBuf>,
 
     /// Write the recording to standard output, to pipe into a viewer (`| rerun -`).
-    #[arg(long, short = 'o', conflicts_with_all = ["spawn", "connect", "serve_grpc", "save"])]
+    #[arg(long, short = 'o', conflicts_with_all = ["spawn", "connect", "serve_grpc", "web", "save"])]
     pub stdout: bool,
 }
 
@@ -75,6 +90,10 @@ pub struct Output {
     pub serving: Option<String>,
     /// Whether the recording outlives a lost viewer (a file or a served endpoint is kept).
     pub survives_viewer_loss: bool,
+    /// The web viewer's page, with the stream's address in it, when `--web` serves one.
+    pub web_page: Option<String>,
+    /// The web viewer's HTTP server: it serves for as long as this is kept.
+    _web_server: Option<Box<dyn std::any::Any>>,
 }
 
 impl OutputArgs {
@@ -86,12 +105,19 @@ impl OutputArgs {
         blueprint: Blueprint,
     ) -> Result<Output, OutputError> {
         let mut sinks = self.file_sinks()?;
-        let survives_viewer_loss = self.save.is_some() || self.serve_grpc.is_some();
+        let survives_viewer_loss = self.save.is_some() || self.served_at().is_some();
         let viewer = self.viewer(survives_viewer_loss, &mut sinks)?;
         let mut serving = None;
-        if let Some(addr) = self.serve_grpc {
+        let (mut web_page, mut web_server) = (None, None);
+        if let Some(addr) = self.served_at() {
             sinks.push(Box::new(ServedSink::new(self.serve(addr)?)));
-            serving = Some(format!("rerun+http://{addr}/proxy"));
+            let url = format!("rerun+http://{addr}/proxy");
+            if let Some(web) = self.web {
+                let (page, server) = self.host_web_viewer(web, &url)?;
+                web_page = Some(page);
+                web_server = Some(server);
+            }
+            serving = Some(url);
         }
         let mut builder =
             rerun::RecordingStreamBuilder::new(application_id).with_blueprint(blueprint);
@@ -105,7 +131,37 @@ impl OutputArgs {
             viewer,
             serving,
             survives_viewer_loss,
+            web_page,
+            _web_server: web_server,
         })
+    }
+
+    /// Where the gRPC endpoint is hosted: `--serve-grpc`, or for `--web` alone the page's IP
+    /// at Rerun's default port.
+    pub fn served_at(&self) -> Option<SocketAddr> {
+        self.serve_grpc
+            .or_else(|| self.web.map(|web| SocketAddr::new(web.ip(), DEFAULT_PORT)))
+    }
+
+    /// Serves Rerun's web viewer at `addr`, streaming from the endpoint at `stream`; returns
+    /// the page's address (with the stream in it) and the server, which serves while kept.
+    fn host_web_viewer(
+        &self,
+        addr: SocketAddr,
+        stream: &str,
+    ) -> Result<(String, Box<dyn std::any::Any>), OutputError> {
+        let refuse = |source| OutputError::WebAddress { addr, source };
+        std::net::TcpListener::bind(addr).map_err(refuse)?;
+        let server = rerun::serve_web_viewer(rerun::web_viewer::WebViewerConfig {
+            bind_ip: addr.ip().to_string(),
+            web_port: addr.port().into(),
+            connect_to: vec![stream.to_owned()],
+            open_browser: !self.no_browser && a_browser_can_open(),
+            ..Default::default()
+        })
+        .map_err(|err| refuse(std::io::Error::other(err.to_string())))?;
+        let page = format!("{}/?url={}", server.server_url(), url_encoded(stream));
+        Ok((page, Box::new(server)))
     }
 
     /// `--stdout` and `--save FILE`.
@@ -159,7 +215,7 @@ impl OutputArgs {
     }
 
     fn nothing_named(&self) -> bool {
-        !self.stdout && self.save.is_none() && self.connect.is_none() && self.serve_grpc.is_none()
+        !self.stdout && self.save.is_none() && self.connect.is_none() && self.served_at().is_none()
     }
 
     /// Hosts the gRPC endpoint, after checking that its address is free (Rerun's server
@@ -178,7 +234,7 @@ impl OutputArgs {
             rerun::ServerOptions {
                 playback_behavior: rerun::PlaybackBehavior::OldestFirst,
                 memory_limit,
-                cors_allowed_origins: Vec::new(),
+                cors_allowed_origins: self.page_origins(),
             },
         )
         .map_err(|err| OutputError::ServeAddress {
@@ -188,6 +244,39 @@ impl OutputArgs {
         wait_until_listening(addr).map_err(|source| OutputError::ServeAddress { addr, source })?;
         Ok(server)
     }
+}
+
+impl OutputArgs {
+    /// Origins besides Rerun's defaults (localhost, 127.0.0.1, rerun.io) that the endpoint
+    /// must let a page stream from: the web viewer's own, when it is served elsewhere.
+    fn page_origins(&self) -> Vec<String> {
+        match self.web {
+            Some(web) if !web.ip().is_loopback() => vec![format!("http://{web}")],
+            _ => Vec::new(),
+        }
+    }
+}
+
+/// Whether a browser can be opened here: on Linux and the BSDs only with a display.
+fn a_browser_can_open() -> bool {
+    if cfg!(any(target_os = "macos", target_os = "windows")) {
+        return true;
+    }
+    ["DISPLAY", "WAYLAND_DISPLAY"]
+        .iter()
+        .any(|v| std::env::var_os(v).is_some_and(|d| !d.is_empty()))
+}
+
+/// `text` with everything but letters, digits and `-._~` percent-encoded, for a URL's query.
+fn url_encoded(text: &str) -> String {
+    text.bytes()
+        .map(|b| match b {
+            b'a'..=b'z' | b'A'..=b'Z' | b'0'..=b'9' | b'-' | b'.' | b'_' | b'~' => {
+                (b as char).to_string()
+            }
+            _ => format!("%{b:02X}"),
+        })
+        .collect()
 }
 
 /// How long Rerun's server may take to start listening.
@@ -259,11 +348,21 @@ fn parse_connect_url(url: &str) -> Result<String, String> {
 
 /// `--serve-grpc ADDR`: IP:PORT, IP (port 9876) or PORT (on 127.0.0.1).
 pub fn parse_serve_addr(text: &str) -> Result<SocketAddr, String> {
+    parse_addr(text, DEFAULT_PORT)
+}
+
+/// `--web ADDR`: IP:PORT, IP (port 9090) or PORT (on 127.0.0.1).
+pub fn parse_web_addr(text: &str) -> Result<SocketAddr, String> {
+    parse_addr(text, DEFAULT_WEB_PORT)
+}
+
+/// IP:PORT, IP (at `default_port`) or PORT (on 127.0.0.1).
+fn parse_addr(text: &str, default_port: u16) -> Result<SocketAddr, String> {
     if let Ok(addr) = text.parse::<SocketAddr>() {
         return Ok(addr);
     }
     if let Ok(ip) = text.parse::<IpAddr>() {
-        return Ok(SocketAddr::new(ip, DEFAULT_PORT));
+        return Ok(SocketAddr::new(ip, default_port));
     }
     if let Ok(port) = text.trim_start_matches(':').parse::<u16>() {
         return Ok(SocketAddr::new(IpAddr::V4(Ipv4Addr::LOCALHOST), port));

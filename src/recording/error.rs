@@ -28,6 +28,13 @@ pub enum OutputError {
         addr: SocketAddr,
         source: std::io::Error,
     },
+    #[error(
+        "web = {addr}: cannot serve the web viewer there ({source}); name a free port, e.g. --web 127.0.0.1:9091"
+    )]
+    WebAddress {
+        addr: SocketAddr,
+        source: std::io::Error,
+    },
     #[error("save = {path}: cannot write there ({reason})")]
     Save { path: PathBuf, reason: String },
     #[error(

@@ -163,3 +163,29 @@ pub fn signal_and_wait(child: &mut Child, sig: &str, limit: Duration) -> (ExitSt
         wait_for(child, limit).unwrap_or_else(|| panic!("still running {limit:?} after {sig}"));
     (status, sent.elapsed())
 }
+
+/// A port on 127.0.0.1 that nothing listens on (just now).
+pub fn free_port() -> u16 {
+    std::net::TcpListener::bind("127.0.0.1:0")
+        .and_then(|l| l.local_addr())
+        .expect("a free port")
+        .port()
+}
+
+/// Reads `child`'s stderr until a line contains `needle` (that line) or the stream ends
+/// (`None`); a thread goes on draining the rest.
+pub fn stderr_lines_until(child: &mut Child, needle: &str) -> Option<String> {
+    use std::io::BufRead as _;
+    let stderr = child.stderr.take().expect("stderr is piped");
+    let (found, said) = crossbeam_channel::bounded(1);
+    let needle = needle.to_owned();
+    std::thread::spawn(move || {
+        for line in std::io::BufReader::new(stderr).lines() {
+            let Ok(line) = line else { break };
+            if line.contains(&needle) {
+                found.try_send(line).ok();
+            }
+        }
+    });
+    said.recv_timeout(Duration::from_secs(30)).ok()
+}
