@@ -3,12 +3,14 @@
 
 use super::logger::{SIM_TIME, path};
 use crate::run::simulate::REFERENCE_STEP;
+use rerun::blueprint::components::PanelState;
 use rerun::blueprint::{
-    Blueprint, ContainerLike, Horizontal, Spatial2DView, Tabs, TextDocumentView, TimePanel,
-    TimeSeriesView, Vertical,
+    Blueprint, BlueprintPanel, ContainerLike, Horizontal, SelectionPanel, Spatial2DView, Tabs,
+    TextDocumentView, TimePanel, TimeSeriesView, Vertical,
 };
 
-/// The whole layout.
+/// The whole layout: the views get the window (the blueprint and selection panels start
+/// collapsed; the time panel, which scrubs the run, stays).
 pub fn blueprint() -> Blueprint {
     Blueprint::new(
         Horizontal::new([
@@ -21,10 +23,16 @@ pub fn blueprint() -> Blueprint {
             ])
             .into(),
         ])
-        .with_column_shares([5.0, 2.0, 4.0]),
+        .with_column_shares([4.0, 3.0, 4.0]),
     )
     .with_auto_views(false)
-    .with_time_panel(TimePanel::new().with_timeline(SIM_TIME))
+    .with_blueprint_panel(BlueprintPanel::from_state(PanelState::Collapsed))
+    .with_selection_panel(SelectionPanel::from_state(PanelState::Collapsed))
+    .with_time_panel(
+        TimePanel::new()
+            .with_timeline(SIM_TIME)
+            .with_state(PanelState::Expanded),
+    )
 }
 
 /// The rope, coloured by tension, with its support, tip, trail and colour scale.
