@@ -7,7 +7,11 @@ browser) with WebGL forced, and checks that the viewer says it streams from the 
 endpoint, that no page error and no "Rerun has crashed" appears, and that the canvas is not
 blank; saves a screenshot; stops the run with SIGTERM.
 
-    scripts/web-check.py [--screenshot PATH] [--seconds S]
+    scripts/web-check.py [--screenshot PATH] [--seconds S] [--soak S [--soak-csv PATH]]
+
+With --soak S the page stays open S seconds more, and every 30 s the script records whether
+the page still answers, the browser's resident memory (all its processes) and the page's JS
+heap, and rope's resident memory: the browser soak of docs/measurements.md.
 
 Where the browser or Playwright is missing it says so and exits 0 as SKIPPED (CI installs
 both: `apt-get install --no-install-recommends chromium-headless-shell`, `pip install
@@ -38,10 +42,61 @@ def skip(why: str) -> None:
     sys.exit(0)
 
 
+def resident_mb(pids) -> float:
+    """The resident memory of processes `pids`, in MB (10⁶ bytes)."""
+    total = 0
+    for pid in pids:
+        try:
+            for line in pathlib.Path(f"/proc/{pid}/status").read_text().splitlines():
+                if line.startswith("VmRSS:"):
+                    total += int(line.split()[1]) * 1024
+        except (FileNotFoundError, ProcessLookupError):
+            pass
+    return total / 1e6
+
+
+def browser_pids():
+    """The pids of every chromium-headless-shell process."""
+    pids = []
+    for entry in pathlib.Path("/proc").iterdir():
+        if entry.name.isdigit():
+            try:
+                if "chromium-headless-shell" in (entry / "cmdline").read_text():
+                    pids.append(int(entry.name))
+            except (FileNotFoundError, ProcessLookupError, PermissionError):
+                pass
+    return pids
+
+
+def soak(page, rope_pid: int, seconds: float, csv: pathlib.Path) -> list:
+    """Keeps the page open, sampling every 30 s; returns the failures seen."""
+    rows = ["seconds,page_alive,browser_mb,js_heap_mb,rope_mb"]
+    failures = []
+    started = time.time()
+    while time.time() - started < seconds:
+        page.wait_for_timeout(30_000)
+        try:
+            heap = page.evaluate("performance.memory ? performance.memory.usedJSHeapSize : 0")
+            alive = True
+        except Exception as err:  # a crashed renderer raises here
+            heap, alive = 0, False
+            failures.append(f"the page stopped answering after {time.time() - started:.0f} s: {err}")
+        rows.append(f"{time.time() - started:.0f},{int(alive)},{resident_mb(browser_pids()):.1f},"
+                    f"{heap / 1e6:.1f},{resident_mb([rope_pid]):.1f}")
+        print(f"web-check: soak {rows[-1]}", flush=True)
+        if not alive:
+            break
+    csv.parent.mkdir(parents=True, exist_ok=True)
+    csv.write_text("\n".join(rows) + "\n")
+    return failures
+
+
 def main() -> int:
     parser = argparse.ArgumentParser()
     parser.add_argument("--screenshot", default=str(ROOT / "target" / "web-check.png"))
     parser.add_argument("--seconds", type=float, default=90.0, help="how long to wait for data")
+    parser.add_argument("--soak", type=float, default=0.0, help="seconds to keep the page open")
+    parser.add_argument("--soak-csv", default=str(ROOT / "target" / "web-soak.csv"))
     args = parser.parse_args()
 
     shell = shutil.which("chromium-headless-shell")
@@ -69,7 +124,7 @@ def main() -> int:
         print("web-check: FAILED: rope printed no page address")
         return 1
     page_url += "&renderer=webgl"
-    failures = []
+    failures: list = []
     with sync_playwright() as p:
         browser = p.chromium.launch(
             executable_path=executable,
@@ -96,6 +151,8 @@ def main() -> int:
                 break
             page.wait_for_timeout(500)
         page.wait_for_timeout(5000)
+        if args.soak > 0:
+            failures += soak(page, run.pid, args.soak, pathlib.Path(args.soak_csv))
         shot = page.screenshot(path=args.screenshot)
         crashed = any(el.is_visible() for el in page.get_by_text("Rerun has crashed").all())
         browser.close()
