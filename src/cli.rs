@@ -123,13 +123,8 @@ pub struct StudyArgs {
     #[arg(long, value_name = "FILE.rrd")]
     pub save: Option<PathBuf>,
 
-    /// Memory the study may use, e.g. 4GB or 50% [default: what the machine has available].
-    #[arg(long, value_name = "SIZE", value_parser = parse_memory_size)]
-    pub max_memory: Option<MemorySize>,
-
-    /// Start the study even if it is predicted to take more than a day of CPU.
-    #[arg(long)]
-    pub yes: bool,
+    #[command(flatten)]
+    pub limits: LimitArgs,
 }
 
 /// A validated study: the grid, the reference's finest N, and what it will cost.
@@ -180,11 +175,8 @@ impl StudyArgs {
             segments: self.segments.clone(),
             dts,
         };
-        let cost = spec.cost(reference_segments, rayon::current_num_threads());
-        let limits = Limits {
-            max_memory: self.max_memory.map(|m| m.bytes),
-            yes: self.yes,
-        };
+        let cost = crate::study::cost(&spec, reference_segments, rayon::current_num_threads());
+        let limits = self.limits.limits();
         if cost.bytes > limits.memory() {
             return Err(ConfigError::StudyTooMuchMemory {
                 needed: cost::bytes_text(cost.bytes),
@@ -269,14 +261,8 @@ pub struct RunArgs {
     #[arg(long)]
     pub allow_unstable: bool,
 
-    /// Memory the run may use, e.g. 4GB or 50% [default: what the machine has available].
-    /// A run predicted to need more is refused before it starts.
-    #[arg(long, value_name = "SIZE", value_parser = parse_memory_size)]
-    pub max_memory: Option<MemorySize>,
-
-    /// Start a finite run even if it is predicted to take more than a day of CPU.
-    #[arg(long)]
-    pub yes: bool,
+    #[command(flatten)]
+    pub limits: LimitArgs,
 
     #[command(flatten)]
     pub output: OutputArgs,
@@ -351,7 +337,7 @@ impl RunArgs {
             log_rate: self.log_rate,
             realtime: self.realtime,
             allow_unstable: self.allow_unstable,
-            limits: self.limits(),
+            limits: self.limits.limits(),
         };
         let (config, choice) = match self.tolerance {
             None => (asked, None),
@@ -383,10 +369,10 @@ impl RunArgs {
             return Err(ConfigError::ToleranceEndless(eps));
         }
         let duration = self.duration.max(0.0);
-        let limits = self.limits();
+        let memory = self.limits.limits().memory(); // read once: the rule asks many times
         let fits = |method, segments, dt| {
             let cost = Cost::of_run(method, segments, dt, duration, self.log_rate);
-            cost.bytes <= limits.memory() && cost.seconds <= tolerance::MAX_SECONDS
+            cost.bytes <= memory && cost.seconds <= tolerance::MAX_SECONDS
         };
         if let Some(choice) = tolerance::choose(eps, duration, scene, fits) {
             return Ok(choice);
@@ -399,7 +385,7 @@ impl RunArgs {
             limit: format!(
                 "{} of CPU and {} of memory",
                 cost::seconds_text(tolerance::MAX_SECONDS),
-                cost::bytes_text(limits.memory())
+                cost::bytes_text(memory)
             ),
             tightest: best.predicted_error,
             method: best.method.name(),
@@ -411,7 +397,22 @@ impl RunArgs {
             ),
         })
     }
+}
 
+/// The limits a run or a study must keep, shared by both commands.
+#[derive(Debug, clap::Args)]
+pub struct LimitArgs {
+    /// Memory it may use, e.g. 4GB or 50% [default: what the machine has available]. A run
+    /// or study predicted to need more is refused before it starts.
+    #[arg(long, value_name = "SIZE", value_parser = parse_memory_size)]
+    pub max_memory: Option<MemorySize>,
+
+    /// Start it even if it is predicted to take more than a day of CPU (a finite run).
+    #[arg(long)]
+    pub yes: bool,
+}
+
+impl LimitArgs {
     /// The limits the flags set.
     pub fn limits(&self) -> Limits {
         Limits {

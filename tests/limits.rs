@@ -197,7 +197,7 @@ proptest! {
         let Command::Run(run) = cli.command else { unreachable!("a run") };
         match run.plans() {
             Ok(plans) => {
-                let limits = run.limits();
+                let limits = run.limits.limits();
                 for planned in plans {
                     prop_assert!(planned.plan.cost.bytes <= limits.memory());
                     if planned.plan.duration.is_finite() {

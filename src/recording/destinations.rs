@@ -244,9 +244,7 @@ impl OutputArgs {
         wait_until_listening(addr).map_err(|source| OutputError::ServeAddress { addr, source })?;
         Ok(server)
     }
-}
 
-impl OutputArgs {
     /// Origins besides Rerun's defaults (localhost, 127.0.0.1, rerun.io) that the endpoint
     /// must let a page stream from: the web viewer's own, when it is served elsewhere.
     fn page_origins(&self) -> Vec<String> {

@@ -131,11 +131,6 @@ impl ViewerLink {
         };
     }
 
-    /// Whether the viewer has accepted the connection (and is not lost since).
-    pub fn connected(&self) -> bool {
-        *self.state() == State::Connected
-    }
-
     fn state(&self) -> std::sync::MutexGuard<'_, State> {
         self.shared
             .state

@@ -54,12 +54,7 @@ impl Cost {
         let steps = (duration / effective).ceil();
         let frames = duration * log_rate + 1.0;
         let seconds = n * (steps * d.ns_per_segment_step + frames * FRAME_NS_PER_SEGMENT) * 1e-9;
-        let frame_bytes = if log_rate > 0.0 {
-            FRAME_BYTES_PER_SEGMENT
-        } else {
-            0
-        };
-        let per_segment = d.bytes_per_segment as u64 + frame_bytes;
+        let per_segment = Self::bytes_per_segment(method, log_rate);
         Self {
             seconds,
             bytes: BASE_BYTES.saturating_add((segments as u64).saturating_mul(per_segment)),
@@ -68,13 +63,18 @@ impl Cost {
 
     /// The largest segment count whose memory fits in `limit` bytes, for a run like this.
     pub fn segments_within(method: MethodKind, log_rate: f64, limit: u64) -> usize {
-        let frame_bytes = if log_rate > 0.0 {
+        let per_segment = Self::bytes_per_segment(method, log_rate);
+        (limit.saturating_sub(BASE_BYTES) / per_segment.max(1)) as usize
+    }
+
+    /// Memory per segment: the method's state, and the frames in flight when any are logged.
+    fn bytes_per_segment(method: MethodKind, log_rate: f64) -> u64 {
+        let frames = if log_rate > 0.0 {
             FRAME_BYTES_PER_SEGMENT
         } else {
             0
         };
-        let per_segment = method.descriptor().bytes_per_segment as u64 + frame_bytes;
-        (limit.saturating_sub(BASE_BYTES) / per_segment.max(1)) as usize
+        method.descriptor().bytes_per_segment as u64 + frames
     }
 }
 

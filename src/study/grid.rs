@@ -6,7 +6,6 @@ use crate::methods::error_model::ErrorModel;
 use crate::methods::{MethodKind, Observation};
 use crate::model::Scene;
 use crate::model::geometry::{self, Point};
-use crate::run::cost::Cost;
 use crate::run::simulate;
 use rayon::prelude::*;
 
@@ -28,34 +27,6 @@ impl Spec {
     /// into whole steps, so that every run ends exactly at the final time.
     pub fn snap(&self, dt: f64) -> f64 {
         self.duration / (self.duration / dt).round().max(1.0)
-    }
-
-    /// What the grid and a reference at `reference_segments` are predicted to cost: the CPU
-    /// time of every run added up, and the memory of as many of the largest runs as there
-    /// are threads.
-    pub fn cost(&self, reference_segments: usize, threads: usize) -> Cost {
-        let reference = MethodKind::REFERENCE;
-        let finest_dt = reference.default_dt(reference_segments);
-        let reference_runs = [
-            (reference, reference_segments, finest_dt),
-            (
-                reference,
-                reference_segments / 2,
-                reference.default_dt(reference_segments / 2),
-            ),
-            (reference, reference_segments, finest_dt / 2.0),
-        ];
-        let costs: Vec<Cost> = self
-            .cells()
-            .into_iter()
-            .chain(reference_runs)
-            .map(|(m, n, dt)| Cost::of_run(m, n, dt, self.duration, 0.0))
-            .collect();
-        let largest = costs.iter().map(|c| c.bytes).max().unwrap_or(0);
-        Cost {
-            seconds: costs.iter().map(|c| c.seconds).sum(),
-            bytes: largest.saturating_mul(threads.max(1) as u64),
-        }
     }
 
     /// The grid's runs, the most expensive first (so the parallel tail is short).

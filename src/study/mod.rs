@@ -17,6 +17,7 @@ pub use grid::{Row, Spec, Status, fit, run_cell, run_grid, shape};
 pub use reference::{Reference, measure_errors, reference};
 
 use crate::methods::{MethodKind, REPORT};
+use crate::run::cost::Cost;
 use std::path::Path;
 
 /// What a whole study produced.
@@ -27,6 +28,23 @@ pub struct Outcome {
     /// The findings as written to `findings.md`.
     pub markdown: String,
     pub startup: Vec<(MethodKind, Vec<(f64, f64)>)>,
+}
+
+/// What the grid of `spec` and a reference at `reference_segments` are predicted to cost:
+/// the CPU time of every run added up, and the memory of as many of the largest runs as
+/// there are `threads`.
+pub fn cost(spec: &Spec, reference_segments: usize, threads: usize) -> Cost {
+    let costs: Vec<Cost> = spec
+        .cells()
+        .into_iter()
+        .chain(reference::reference_runs(reference_segments))
+        .map(|(m, n, dt)| Cost::of_run(m, n, dt, spec.duration, 0.0))
+        .collect();
+    let largest = costs.iter().map(|c| c.bytes).max().unwrap_or(0);
+    Cost {
+        seconds: costs.iter().map(|c| c.seconds).sum(),
+        bytes: largest.saturating_mul(threads.max(1) as u64),
+    }
 }
 
 /// Runs the reference and the grid, measures every run against the reference, and writes

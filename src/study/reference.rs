@@ -6,9 +6,6 @@ use crate::methods::MethodKind;
 use crate::model::{Point, Scene};
 use rayon::prelude::*;
 
-/// The method the reference is computed with (see [`MethodKind::REFERENCE`]).
-const REFERENCE_METHOD: MethodKind = MethodKind::REFERENCE;
-
 /// A converged solution the study trusts, and how far it can be trusted.
 #[derive(Clone, Debug)]
 pub struct Reference {
@@ -28,12 +25,25 @@ impl Reference {
     }
 }
 
+/// The reference's runs, as (method, N, k): [`MethodKind::REFERENCE`] at `finest` segments
+/// and its default step, at `finest / 2` and its default step, and at `finest` with half the
+/// step.
+pub fn reference_runs(finest: usize) -> [(MethodKind, usize, f64); 3] {
+    let method = MethodKind::REFERENCE;
+    let (coarse, dt) = (finest / 2, method.default_dt(finest));
+    [
+        (method, finest, dt),
+        (method, coarse, method.default_dt(coarse)),
+        (method, finest, dt / 2.0),
+    ]
+}
+
 /// The reference: [`MethodKind::REFERENCE`] at `finest` and `finest / 2` segments,
 /// extrapolated in N by Richardson (x + (x − x_half) / (2^p − 1), p its order: 2 for the
 /// chain), with the time step checked by halving it at the finest N.
 pub fn reference(scene: &Scene, duration: f64, finest: usize) -> anyhow::Result<Reference> {
-    let run = |n: usize, dt: f64| -> anyhow::Result<(Point, Vec<Point>)> {
-        let row = run_cell(scene, duration, REFERENCE_METHOD, n, dt);
+    let run = |method: MethodKind, n: usize, dt: f64| -> anyhow::Result<(Point, Vec<Point>)> {
+        let row = run_cell(scene, duration, method, n, dt);
         match (row.status, row.tip, row.shape) {
             (Status::Ok, Some(tip), Some(shape)) => Ok((tip, shape)),
             (status, ..) => {
@@ -41,21 +51,17 @@ pub fn reference(scene: &Scene, duration: f64, finest: usize) -> anyhow::Result<
             }
         }
     };
-    let coarse_n = finest / 2;
-    let dt = REFERENCE_METHOD.default_dt(finest);
-    let runs: Vec<_> = [
-        (finest, dt),
-        (coarse_n, REFERENCE_METHOD.default_dt(coarse_n)),
-        (finest, dt / 2.0),
-    ]
-    .into_par_iter()
-    .map(|(n, dt)| run(n, dt))
-    .collect::<anyhow::Result<_>>()?;
+    let runs = reference_runs(finest);
+    let [(method, _, dt), (_, coarse_n, _), _] = runs;
+    let runs: Vec<_> = runs
+        .into_par_iter()
+        .map(|(method, n, dt)| run(method, n, dt))
+        .collect::<anyhow::Result<_>>()?;
     let [(tip_f, shape_f), (tip_c, shape_c), (tip_k, _)]: [(Point, Vec<Point>); 3] = runs
         .try_into()
         .map_err(|_| anyhow::anyhow!("three reference runs expected"))?;
     // Richardson in h: x + (x − x_half) / (2^p − 1), p the method's order.
-    let order = REFERENCE_METHOD.descriptor().error_model.order.round();
+    let order = method.descriptor().error_model.order.round();
     let extrapolate = |f: Point, c: Point| f + (f - c) / (2f64.powf(order) - 1.0);
     let tip = extrapolate(tip_f, tip_c);
     let shape: Vec<Point> = shape_f
@@ -69,7 +75,7 @@ pub fn reference(scene: &Scene, duration: f64, finest: usize) -> anyhow::Result<
         error_in_h: (tip - tip_f).norm(),
         error_in_k: (tip_k - tip_f).norm(),
         description: format!(
-            "{REFERENCE_METHOD} method, Richardson extrapolation (order {order}) from N = {coarse_n} and {finest}, k = {dt:e}"
+            "{method} method, Richardson extrapolation (order {order}) from N = {coarse_n} and {finest}, k = {dt:e}"
         ),
     })
 }
