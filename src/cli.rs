@@ -123,8 +123,32 @@ pub struct StudyArgs {
     #[arg(long, value_name = "FILE.rrd")]
     pub save: Option<PathBuf>,
 
+    /// Instead of the grid: swing each method of --methods from each --angle (a list) for
+    /// this many time units at N = 100 and its default step, and chart |E − E_ref| against
+    /// t (--segments, --dts and --duration are not used).
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    pub long_run: Option<f64>,
+
+    /// Instead of the grid: run the report's scheme from the scene over N × k until it
+    /// blows up (or T time units), map when, and chart the sawtooth that grows first.
+    #[arg(
+        long,
+        value_name = "T",
+        allow_negative_numbers = true,
+        conflicts_with = "long_run"
+    )]
+    pub blow_up: Option<f64>,
+
     #[command(flatten)]
     pub limits: LimitArgs,
+}
+
+/// A validated `rope study --long-run`: its runs and what they will cost.
+#[derive(Clone, Debug)]
+pub struct LongRunPlan {
+    pub duration: f64,
+    pub scenes: Vec<Scene>,
+    pub cost: Cost,
 }
 
 /// A validated study: the grid, the reference's finest N, and what it will cost.
@@ -142,6 +166,58 @@ impl StudyArgs {
             (0..10)
                 .map(|i| if i % 2 == 0 { 1.0 } else { 3.0 } * 10f64.powi(-6 + i / 2))
                 .collect()
+        })
+    }
+
+    /// Checks the flags of `--blow-up`: the one scene and the duration.
+    pub fn blow_up_plan(&self, duration: f64) -> Result<Scene, ConfigError> {
+        if !(duration.is_finite() && duration > 0.0) {
+            return Err(ConfigError::LongRunDuration {
+                flag: "blow-up",
+                duration,
+            });
+        }
+        let scene = self.scene.scene()?;
+        crate::methods::REPORT
+            .method
+            .build(&scene, 4, 1e-3)
+            .map(|_| scene)
+    }
+
+    /// Checks the flags of `--long-run`, naming the one that is wrong and what would work.
+    pub fn long_run_plan(&self, duration: f64) -> Result<LongRunPlan, ConfigError> {
+        if !(duration.is_finite() && duration > 0.0) {
+            return Err(ConfigError::LongRunDuration {
+                flag: "long-run",
+                duration,
+            });
+        }
+        let scenes = self.scene.scenes();
+        for scene in &scenes {
+            scene.validate()?;
+        }
+        let segments = crate::methods::REPORT.segments;
+        let costs: Vec<Cost> = self
+            .methods
+            .iter()
+            .flat_map(|&m| scenes.iter().map(move |_| m))
+            .map(|m| Cost::of_run(m, segments, m.default_dt(segments), duration, 10.0))
+            .collect();
+        let cost = Cost {
+            seconds: costs.iter().map(|c| c.seconds).sum(),
+            bytes: costs.iter().map(|c| c.bytes).sum(),
+        };
+        let limits = self.limits.limits();
+        if cost.seconds > cost::LONG_SECONDS && !limits.yes {
+            return Err(ConfigError::StudyTooLong {
+                cost: cost::seconds_text(cost.seconds),
+                cells: costs.len(),
+            });
+        }
+        Ok(LongRunPlan {
+            duration,
+            scenes,
+            cost,
         })
     }
 

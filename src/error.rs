@@ -108,6 +108,8 @@ pub enum ConfigError {
     StudyScenes { flag: &'static str, count: usize },
     #[error("duration = {0}: a study's runs must end, at a finite number of time units > 0")]
     StudyDuration(f64),
+    #[error("{flag} = {duration}: give a finite number of time units > 0 (for example 10000)")]
+    LongRunDuration { flag: &'static str, duration: f64 },
     #[error("dts: {0} is not a positive, finite time step (for example 1e-4)")]
     StudyTimeStep(f64),
     #[error("segments: {segments} is too few (every method needs at least {min})")]

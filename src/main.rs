@@ -254,6 +254,12 @@ fn viewer_gone(link: &ViewerLink, survives: bool, stop: &AtomicBool) -> bool {
 
 /// `rope study`: the grid, the reference, the findings and charts; optionally a recording.
 fn study(args: &StudyArgs) -> anyhow::Result<ExitCode> {
+    if let Some(duration) = args.long_run {
+        return long_runs(args, duration);
+    }
+    if let Some(duration) = args.blow_up {
+        return blow_up(args, duration);
+    }
     let plan = match args.plan() {
         Ok(plan) => plan,
         Err(err) => return Ok(bad_input(&err)),
@@ -300,6 +306,72 @@ fn study(args: &StudyArgs) -> anyhow::Result<ExitCode> {
     println!("{}", outcome.markdown);
     eprintln!(
         "rope study: wrote study.csv, findings.md and the charts to {}",
+        args.out.display()
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `rope study --long-run T`: each method from each release for T time units.
+fn long_runs(args: &StudyArgs, duration: f64) -> anyhow::Result<ExitCode> {
+    let plan = match args.long_run_plan(duration) {
+        Ok(plan) => plan,
+        Err(err) => return Ok(bad_input(&err)),
+    };
+    if let Err(err) = writable_dir("out", &args.out) {
+        return Ok(bad_input(&err));
+    }
+    let runs = (args.methods.len() * plan.scenes.len()) as u64;
+    eprintln!(
+        "rope study: {runs} long runs of {duration} time units on {} threads, predicted {} of CPU",
+        rayon::current_num_threads(),
+        cost::seconds_text(plan.cost.seconds)
+    );
+    let counter = Counter::new(
+        runs.saturating_mul(duration.ceil() as u64),
+        "rope study",
+        "time units",
+    );
+    let command = std::env::args().collect::<Vec<_>>().join(" ");
+    let markdown = rope::study::execute_long_runs(
+        &args.methods,
+        &plan.scenes,
+        duration,
+        &args.out,
+        &command,
+        || counter.inc(),
+    )?;
+    counter.finish();
+    println!("{markdown}");
+    eprintln!(
+        "rope study: wrote long_run.csv, long_run.md and the chart to {}",
+        args.out.display()
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `rope study --blow-up T`: when the report's scheme blows up, and what grows first.
+fn blow_up(args: &StudyArgs, duration: f64) -> anyhow::Result<ExitCode> {
+    let scene = match args.blow_up_plan(duration) {
+        Ok(scene) => scene,
+        Err(err) => return Ok(bad_input(&err)),
+    };
+    if let Err(err) = writable_dir("out", &args.out) {
+        return Ok(bad_input(&err));
+    }
+    let runs =
+        (rope::study::blow_up::SEGMENTS.len() * rope::study::blow_up::FRACTIONS.len()) as u64;
+    eprintln!(
+        "rope study: {runs} runs of the {} scheme from the {scene}, each to its blow-up or t = {duration}",
+        rope::methods::REPORT.method
+    );
+    let counter = Counter::new(runs, "rope study", "runs");
+    let command = std::env::args().collect::<Vec<_>>().join(" ");
+    let markdown =
+        rope::study::execute_blow_up(&scene, duration, &args.out, &command, || counter.inc())?;
+    counter.finish();
+    println!("{markdown}");
+    eprintln!(
+        "rope study: wrote blow_up.md, blow_up.csv and the charts to {}",
         args.out.display()
     );
     Ok(ExitCode::SUCCESS)

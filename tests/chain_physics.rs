@@ -31,18 +31,7 @@ fn horizontal_release_tip_falls_with_exactly_g_until_t_1_2() {
 
 #[test]
 fn thirty_degree_release_tip_follows_the_general_free_fall_law() {
-    let (_, frames) = run_frames(
-        MethodKind::Chain,
-        THIRTY,
-        100,
-        MethodKind::Chain.default_dt(100),
-        1.2,
-        100.0,
-    );
-    let worst = frames
-        .iter()
-        .map(|f| free_fall_residual(30.0, f).abs())
-        .fold(0.0, f64::max);
+    let worst = worst_free_fall_residual(MethodKind::Chain, 30.0);
     assert!(worst < 1e-3, "largest residual {worst}");
 }
 

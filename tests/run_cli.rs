@@ -292,11 +292,14 @@ fn tolerance_flag_prints_its_choice_and_runs_it() {
     ]);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{stderr}");
+    // The method the rule picks (every limit is far off at this tolerance).
+    let scene = rope::model::Scene::Release { angle_deg: 30.0 };
+    let rule = rope::methods::tolerance::choose(1e-4, 1.0, &scene, |_, _, _| true).unwrap();
     assert!(
-        stderr.contains("tolerance 1e-4: chose the chain method"),
+        stderr.contains(&format!("tolerance 1e-4: chose the {} method", rule.method)),
         "{stderr}"
     );
-    assert_eq!(summary(&json)["method"], "chain");
+    assert_eq!(summary(&json)["method"], rule.method.name());
     let clash = rope(&[
         "run",
         "--tolerance",
@@ -328,8 +331,9 @@ fn study_saves_its_chart_data_into_a_recording_and_reports_progress() {
     ]);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{stderr}");
+    let runs = 2 * 2 * rope::methods::MethodKind::ALL.len();
     assert!(
-        stderr.contains("8/8 runs done"),
+        stderr.contains(&format!("{runs}/{runs} runs done")),
         "progress lines off a terminal: {stderr}"
     );
     assert!(String::from_utf8_lossy(&out.stdout).contains("Convergence in h"));
@@ -437,4 +441,73 @@ fn a_viewer_that_takes_nothing_costs_the_recording_not_the_summary() {
     assert_eq!(s["frames_logged"], 31);
     assert!(s["recording_error"].is_string());
     drop(silent);
+}
+
+#[test]
+fn a_long_run_study_charts_the_energy_and_leaves_out_what_cannot_start() {
+    let dir = Scratch::new("long-run");
+    let out = rope(&[
+        "study",
+        "--long-run",
+        "3",
+        "--methods",
+        "seed,rattle",
+        "--angle",
+        "0,30",
+        "--out",
+        dir.path("long").to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    let table = std::fs::read_to_string(dir.path("long/long_run.md")).unwrap();
+    for row in [
+        "| rattle | release at 0°",
+        "| rattle | release at 30°",
+        "| seed | release at 30°",
+    ] {
+        assert!(table.contains(row), "{row} missing from {table}");
+    }
+    assert!(
+        table.contains("Left out: seed from the release at 0°"),
+        "{table}"
+    );
+    for file in ["long_run.csv", "long_run.svg", "long_run.png"] {
+        assert!(dir.path("long").join(file).exists(), "{file} not written");
+    }
+    let bad = rope(&["study", "--long-run", "-1"]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("long-run = -1"));
+}
+
+#[test]
+fn a_blow_up_study_maps_the_seed_schemes_lifetime() {
+    let dir = Scratch::new("blow-up");
+    let out = rope(&[
+        "study",
+        "--blow-up",
+        "2",
+        "--out",
+        dir.path("b").to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    let table = std::fs::read_to_string(dir.path("b/blow_up.md")).unwrap();
+    for n in rope::study::blow_up::SEGMENTS {
+        assert!(
+            table.contains(&format!("\n| {n} | ")),
+            "N = {n} missing from {table}"
+        );
+    }
+    for file in ["blow_up.csv", "divergence_map.svg", "divergence_map.png"] {
+        assert!(dir.path("b").join(file).exists(), "{file} not written");
+    }
+    let bad = rope(&["study", "--blow-up", "inf"]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("blow-up = inf"));
+    let horizontal = rope(&["study", "--blow-up", "2", "--angle", "0"]);
+    assert_eq!(
+        horizontal.status.code(),
+        Some(2),
+        "the seed cannot start from 0°"
+    );
 }

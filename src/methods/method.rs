@@ -43,6 +43,12 @@ pub trait Method: Send {
     fn energy(&self) -> Energy;
     /// Tension at the support, F_0, from the latest solve.
     fn support_tension(&self) -> f64;
+    /// The largest joint gap |g_j| after the latest step, for a method whose rods are held
+    /// together by constraints it solves for (it must stay at round-off); `None` for a
+    /// method whose string cannot come apart by construction.
+    fn constraint_residual(&self) -> Option<f64> {
+        None
+    }
     /// Fills `out` with the state now (tension freshly solved for the current time).
     fn observe(&mut self, out: &mut Observation);
     /// A copy of the method in its current state.

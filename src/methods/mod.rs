@@ -4,6 +4,7 @@
 //! * [`method`]: what every method is: the [`Method`] trait and its [`Descriptor`];
 //! * [`seed`]: the report's finite-difference scheme, first order in h;
 //! * [`chain`]: a chain of rigid rods with RK4, second order in h;
+//! * [`rattle`]: the same chain in maximal coordinates with RATTLE: symplectic, bounded energy;
 //! * [`registry`]: the methods a run can choose by name ([`MethodKind`]), each mapped to its
 //!   descriptor, and the report's own setting;
 //! * [`error_model`] and [`tolerance`]: how accurate a method is at N segments, and the rule
@@ -16,9 +17,11 @@
 //! two of them import each other.
 
 pub mod chain;
+pub(crate) mod constraint_matrix;
 pub mod error_model;
 pub(crate) mod joint_forces;
 pub mod method;
+pub mod rattle;
 pub mod registry;
 pub mod seed;
 pub mod tolerance;

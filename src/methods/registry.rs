@@ -2,7 +2,7 @@
 //! crate asks a [`MethodKind`] for its [`Descriptor`] and never matches on the method.
 
 use super::method::{Descriptor, Method};
-use super::{chain, seed};
+use super::{chain, rattle, seed};
 use crate::error::ConfigError;
 use crate::model::Scene;
 
@@ -16,11 +16,15 @@ pub enum MethodKind {
     /// A chain of N uniform rigid rods, joint forces from an O(N) block-tridiagonal solve,
     /// RK4 in time: second order in h, exact inextensibility, starts from the horizontal.
     Chain,
+    /// The same chain of rods in maximal coordinates, RATTLE in time: second order in h and
+    /// in k, symplectic and time-reversible (no energy drift between the violent snaps of a
+    /// long chaotic swing), starts from the horizontal.
+    Rattle,
 }
 
 impl MethodKind {
     /// Every method, in the order charts list them.
-    pub const ALL: [MethodKind; 2] = [MethodKind::Seed, MethodKind::Chain];
+    pub const ALL: [MethodKind; 3] = [MethodKind::Seed, MethodKind::Chain, MethodKind::Rattle];
 
     /// The method of a finite run when none is named: the report's.
     pub const DEFAULT: MethodKind = MethodKind::Seed;
@@ -38,6 +42,7 @@ impl MethodKind {
         match self {
             Self::Seed => &seed::DESCRIPTOR,
             Self::Chain => &chain::DESCRIPTOR,
+            Self::Rattle => &rattle::DESCRIPTOR,
         }
     }
 

@@ -64,6 +64,7 @@ fn diagnostics() -> Tabs {
         ContainerLike::from(series_view("Support tension F_0", path::SUPPORT_TENSION)),
         series_view("Tip speed", path::TIP_SPEED).into(),
         series_view("Tip acceleration", path::TIP_ACCELERATION).into(),
+        series_view("Joint gap (rattle)", path::CONSTRAINT_RESIDUAL).into(),
         TextDocumentView::new("Parameters")
             .with_origin(path::PARAMETERS)
             .into(),

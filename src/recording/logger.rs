@@ -34,6 +34,7 @@ pub mod path {
     pub const SUPPORT_TENSION: &str = "support/tension";
     pub const TIP_SPEED: &str = "tip/speed";
     pub const TIP_ACCELERATION: &str = "tip/acceleration";
+    pub const CONSTRAINT_RESIDUAL: &str = "constraint/residual";
     pub const PARAMETERS: &str = "parameters";
 }
 
@@ -45,7 +46,7 @@ pub const STEP: &str = "step";
 type Series = (&'static str, &'static str, [u8; 3], fn(&Frame) -> f64);
 
 /// Every time series the recording carries, styled once and filled by each batch.
-const SERIES: [Series; 7] = [
+const SERIES: [Series; 8] = [
     (path::KINETIC, "kinetic", [230, 120, 30], |f| {
         f.energy.kinetic()
     }),
@@ -68,6 +69,13 @@ const SERIES: [Series; 7] = [
     (path::TIP_ACCELERATION, "|a_tip|", [120, 60, 160], |f| {
         f.tip_acceleration.norm()
     }),
+    // Only a method that solves for its joints has one; the others leave it empty.
+    (
+        path::CONSTRAINT_RESIDUAL,
+        "max |g_j|",
+        [150, 150, 150],
+        |f| f.constraint_residual.unwrap_or(f64::NAN),
+    ),
 ];
 
 /// A paced run sends each frame's shapes at once, but gathers the time series of up to this
@@ -325,6 +333,10 @@ impl RopeLogger {
         }
         let rows = &self.series;
         for (i, (entity, ..)) in SERIES.iter().enumerate() {
+            // A series a method does not have (NaN) is not sent at all.
+            if rows.iter().all(|r| r.2[i].is_nan()) {
+                continue;
+            }
             self.rec.send_columns(
                 *entity,
                 timelines(rows.iter().map(|r| r.0), rows.iter().map(|r| r.1)),

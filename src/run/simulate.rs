@@ -44,6 +44,9 @@ pub struct Frame {
     pub tip_velocity: Vector2<f64>,
     pub tip_acceleration: Vector2<f64>,
     pub support_tension: f64,
+    /// The largest joint gap, for a method that solves for its joints (see
+    /// [`Method::constraint_residual`]).
+    pub constraint_residual: Option<f64>,
 }
 
 impl Frame {
@@ -70,6 +73,8 @@ pub struct Outcome {
     /// Tip position at the last state reached.
     pub tip: Point,
     pub support_tension: f64,
+    /// The largest joint gap seen, for a method that solves for its joints.
+    pub max_constraint_residual: Option<f64>,
     /// Set when the run stopped because its numbers could no longer be trusted.
     pub diverged: Option<Diverged>,
     /// Set when the caller or the stop flag ended the run early.
@@ -113,6 +118,7 @@ pub fn frame(
             &obs.angular_acceleration,
         ),
         support_tension: obs.tension.first().copied().unwrap_or(0.0),
+        constraint_residual: method.constraint_residual(),
     }
 }
 
@@ -158,6 +164,7 @@ pub fn run(
         frames: 0,
         tip: Point::origin(),
         support_tension: method.support_tension(),
+        max_constraint_residual: method.constraint_residual(),
         diverged: None,
         cancelled: false,
     };
@@ -223,6 +230,10 @@ fn watch(method: &dyn Method, energy_reference: f64, outcome: &mut Outcome) -> O
     let step = method.steps();
     let energy = method.energy().total();
     let deviation = (energy - energy_reference).abs();
+    if let Some(residual) = method.constraint_residual() {
+        let largest = outcome.max_constraint_residual.unwrap_or(0.0);
+        outcome.max_constraint_residual = Some(largest.max(residual));
+    }
     let support = method.support_tension();
     let hint = || {
         let (d, dt) = (method.descriptor(), method.dt());

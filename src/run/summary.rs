@@ -77,6 +77,9 @@ pub struct Summary {
     pub energy: EnergySummary,
     pub tip: Xy,
     pub support_tension: f64,
+    /// The largest joint gap |g_j| seen, for a method that solves for its joints (`rattle`):
+    /// how far the rods came apart, at round-off when all is well.
+    pub constraint_residual: Option<f64>,
     /// `[t, x, y]` of the tip at every logged frame.
     pub tip_samples: Vec<[f64; 3]>,
     /// Oscillation period from the tip's zero crossings, for the `mode` scene.
@@ -136,6 +139,7 @@ impl Summary {
                 y: outcome.tip.y,
             },
             support_tension: outcome.support_tension,
+            constraint_residual: outcome.max_constraint_residual,
             tip_samples: samples,
             period,
             recording_error,
@@ -169,6 +173,9 @@ impl Summary {
             "  tip at ({:.5}, {:.5}), support tension F_0 = {:.4}\n",
             self.tip.x, self.tip.y, self.support_tension
         );
+        if let Some(residual) = self.constraint_residual {
+            text += &format!("  joints closed to {residual:.1e} at worst (largest |g_j|)\n");
+        }
         if let Some(period) = self.period {
             text += &format!(
                 "  period {period:.4} (angular frequency {:.4})\n",

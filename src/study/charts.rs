@@ -12,12 +12,12 @@ use std::path::Path;
 /// The font every chart uses, shipped so that PNGs render the same on any machine.
 static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
 const SANS: &str = "sans-serif";
-const SIZE: (u32, u32) = (1100, 620);
+pub(crate) const SIZE: (u32, u32) = (1100, 620);
 
 type Drawn<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
 
 /// A named, coloured line of (x, y) points.
-type Series = (String, RGBColor, Vec<(f64, f64)>);
+pub(crate) type Series = (String, RGBColor, Vec<(f64, f64)>);
 
 /// What a work–precision panel plots against cost: a label and how to read it off a row.
 type Metric = (String, fn(&Row) -> Option<f64>);
@@ -29,26 +29,27 @@ pub fn register_font() -> anyhow::Result<()> {
 }
 
 /// Draws `chart` to `<dir>/<name>.svg` and `<dir>/<name>.png`.
-macro_rules! render {
+macro_rules! render_chart {
     ($dir:expr, $name:expr, $chart:ident, $($arg:expr),*) => {{
         let svg = $dir.join(format!("{}.svg", $name));
         let png = $dir.join(format!("{}.png", $name));
         {
-            let root = SVGBackend::new(&svg, SIZE).into_drawing_area();
+            let root = SVGBackend::new(&svg, $crate::study::charts::SIZE).into_drawing_area();
             $chart(&root, $($arg),*).map_err(|e| anyhow::anyhow!("drawing {}: {e:?}", svg.display()))?;
             root.present().map_err(|e| anyhow::anyhow!("writing {}: {e:?}", svg.display()))?;
         }
         {
-            let root = BitMapBackend::new(&png, SIZE).into_drawing_area();
+            let root = BitMapBackend::new(&png, $crate::study::charts::SIZE).into_drawing_area();
             $chart(&root, $($arg),*).map_err(|e| anyhow::anyhow!("drawing {}: {e:?}", png.display()))?;
             root.present().map_err(|e| anyhow::anyhow!("writing {}: {e:?}", png.display()))?;
         }
         anyhow::Ok(())
     }};
 }
+pub(crate) use render_chart;
 
 /// Colour of a method's curve for the i-th of `count` segment counts (darker = finer).
-fn shade(method: MethodKind, i: usize, count: usize) -> RGBColor {
+pub(crate) fn shade(method: MethodKind, i: usize, count: usize) -> RGBColor {
     let t = if count > 1 {
         i as f64 / (count - 1) as f64
     } else {
@@ -81,7 +82,7 @@ fn legend<'a, 'b, DB: DrawingBackend + 'a, CT: plotters::coord::CoordTranslate>(
 /// land on values like 9.999999999999998e-5 that should read 1e-4).
 fn tick(v: &f64) -> String {
     let a = v.abs();
-    if a == 0.0 {
+    if a < 1e-12 {
         "0".to_owned()
     } else if (1e-2..1e4).contains(&a) {
         let digits = (3 - a.log10().floor() as i32 - 1).max(0) as usize;
@@ -358,7 +359,7 @@ pub fn measured_boundary(rows: &[Row], method: MethodKind) -> Vec<(f64, f64)> {
 }
 
 /// A simple x–y line chart with one or more named series.
-fn lines<DB: DrawingBackend>(
+pub(crate) fn lines<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     title: &str,
     x_desc: &str,
@@ -463,14 +464,14 @@ pub fn write_all(
     startup: &[(MethodKind, Vec<(f64, f64)>)],
     scene_title: &str,
 ) -> anyhow::Result<()> {
-    render!(
+    render_chart!(
         dir,
         "work_precision",
         work_precision,
         rows,
         &format!("Work–precision, {scene_title}")
     )?;
-    render!(
+    render_chart!(
         dir,
         "stability_map",
         stability,
@@ -506,7 +507,7 @@ fn write_startup_burst(
         "Fig. 1: kinetic energy at start-up (N = {}, k = {:e}, first 300 steps)",
         REPORT.segments, REPORT.dt
     );
-    render!(
+    render_chart!(
         dir,
         "fig1_startup_burst",
         lines,
@@ -529,7 +530,7 @@ fn write_energy_against_n(dir: &Path, rows: &[Row]) -> anyhow::Result<()> {
         })
         .filter(|s| !s.2.is_empty())
         .collect();
-    render!(
+    render_chart!(
         dir,
         "fig2_energy_vs_n_linear",
         lines,
@@ -539,7 +540,7 @@ fn write_energy_against_n(dir: &Path, rows: &[Row]) -> anyhow::Result<()> {
         (false, false),
         &series
     )?;
-    render!(
+    render_chart!(
         dir,
         "fig3_energy_vs_n_log",
         lines,
@@ -569,7 +570,7 @@ fn write_energy_against_k(dir: &Path, rows: &[Row]) -> anyhow::Result<()> {
         "Fig. 4: energy deviation against k (N = {}; missing points diverged)",
         REPORT.segments
     );
-    render!(
+    render_chart!(
         dir,
         "fig4_energy_vs_k",
         lines,

@@ -22,7 +22,12 @@ pub struct Findings {
     /// method's cheapest run at least as accurate.
     pub report_method_best: Option<Row>,
     pub matching: Vec<Row>,
+    /// Each method's cheapest run with a tip error at most [`TIP_TARGET`].
+    pub at_target: Vec<Row>,
 }
+
+/// The tip error at which the methods' costs are compared side by side.
+pub const TIP_TARGET: f64 = 1e-4;
 
 /// Energy deviation as the "error" of a fit (same fitting code, other metric).
 fn energy_rows(rows: &[Row]) -> Vec<Row> {
@@ -75,9 +80,14 @@ impl Findings {
                     .collect()
             })
             .unwrap_or_default();
+        let at_target = methods
+            .iter()
+            .filter_map(|&m| cheapest_within(rows, m, TIP_TARGET))
+            .collect();
         Self {
             report_method_best,
             matching,
+            at_target,
             tip_models: methods
                 .iter()
                 .filter_map(|&m| Some((m, fit(rows, m, 20)?)))
@@ -109,6 +119,35 @@ impl Findings {
         s += &self.stability_section();
         s += &self.against_report_method_section();
         s += &self.report_accuracy_section();
+        s += &self.at_target_section();
+        s
+    }
+
+    /// Each method's cheapest run to a tip error of [`TIP_TARGET`], against the cheapest.
+    fn at_target_section(&self) -> String {
+        let Some(least) = self
+            .at_target
+            .iter()
+            .map(|r| r.cpu_seconds)
+            .min_by(f64::total_cmp)
+        else {
+            return String::new();
+        };
+        let mut s = format!(
+            "\n## A tip error of {TIP_TARGET:.0e}: each method's cheapest run\n\n| method | N | k | tip error | CPU s | × the cheapest |\n|---|---|---|---|---|---|\n"
+        );
+        for r in &self.at_target {
+            let _ = writeln!(
+                s,
+                "| {} | {} | {:.3e} | {:.2e} | {:.2e} | {:.2} |",
+                r.method,
+                r.segments,
+                r.dt,
+                r.tip_error.unwrap_or(f64::NAN),
+                r.cpu_seconds,
+                r.cpu_seconds / least.max(1e-12)
+            );
+        }
         s
     }
 

@@ -4,11 +4,17 @@
 //!
 //! * [`grid`]: the cells, one run each, in parallel; [`reference`]: the converged solution;
 //! * [`findings`]: convergence orders, stability limits, the cheapest accurate runs;
-//! * [`report`]: `study.csv`; [`charts`]: SVG and PNG; [`record`]: the same into Rerun.
+//! * [`report`]: `study.csv`; [`charts`]: SVG and PNG; [`record`]: the same into Rerun;
+//! * [`long_run`]: `--long-run T`, the energy error of each method over a long swing;
+//! * [`blow_up`]: `--blow-up T`, when the report's scheme blows up and what grows first;
+//! * [`long_charts`]: the charts of those two.
 
+pub mod blow_up;
 pub mod charts;
 pub mod findings;
 pub mod grid;
+pub mod long_charts;
+pub mod long_run;
 pub mod record;
 pub mod reference;
 pub mod report;
@@ -90,4 +96,80 @@ pub fn execute(
         markdown,
         startup,
     })
+}
+
+/// Runs every method of `methods` from every scene of `scenes` for `duration` time units (in
+/// parallel, a core each), and writes `long_run.csv`, `long_run.md` and the chart
+/// `long_run.svg`/`.png` into `out`. Returns the Markdown. `tick` is called once per time
+/// unit simulated, by any run.
+pub fn execute_long_runs(
+    methods: &[MethodKind],
+    scenes: &[crate::model::Scene],
+    duration: f64,
+    out: &Path,
+    command: &str,
+    tick: impl Fn() + Sync,
+) -> anyhow::Result<String> {
+    use anyhow::Context as _;
+    use rayon::prelude::*;
+    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    // A method that cannot start from a scene (the seed from the horizontal) is left out,
+    // with its reason in the Markdown.
+    let (pairs, left_out): (Vec<_>, Vec<_>) = methods
+        .iter()
+        .flat_map(|&m| scenes.iter().map(move |&s| (m, s)))
+        .partition(|&(m, s)| {
+            m.build(&s, REPORT.segments, m.default_dt(REPORT.segments))
+                .is_ok()
+        });
+    for _ in 0..left_out.len() as u64 * duration.ceil() as u64 {
+        tick();
+    }
+    let runs = pairs
+        .par_iter()
+        .map(|&(m, s)| long_run::run(m, s, duration, &tick))
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    let csv = out.join("long_run.csv");
+    long_run::write_csv(&runs, &csv).with_context(|| format!("writing {}", csv.display()))?;
+    let mut markdown = long_run::markdown(&runs, duration, command);
+    for (m, s) in left_out {
+        if let Err(err) = m.build(&s, REPORT.segments, m.default_dt(REPORT.segments)) {
+            markdown += &format!("\nLeft out: {m} from the {s}: {err}.\n");
+        }
+    }
+    let md = out.join("long_run.md");
+    std::fs::write(&md, &markdown).with_context(|| format!("writing {}", md.display()))?;
+    charts::register_font()?;
+    long_charts::write_long_runs(out, &runs)?;
+    Ok(markdown)
+}
+
+/// The report's method's time to divergence over N × k, and its sawtooth before the blow-up
+/// at N = 100 and its default step; writes `blow_up.md`, `blow_up.csv` and the charts
+/// `divergence_map` and `sawtooth` into `out`. Returns the Markdown.
+pub fn execute_blow_up(
+    scene: &crate::model::Scene,
+    duration: f64,
+    out: &Path,
+    command: &str,
+    tick: impl Fn() + Sync,
+) -> anyhow::Result<String> {
+    use anyhow::Context as _;
+    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    let lifetimes = blow_up::lifetimes(scene, duration, tick);
+    let dt = REPORT.method.default_dt(REPORT.segments);
+    let saw = blow_up::sawtooth(scene, dt, duration)?;
+    let csv_path = out.join("blow_up.csv");
+    let mut csv = csv::Writer::from_path(&csv_path)
+        .with_context(|| format!("writing {}", csv_path.display()))?;
+    for l in &lifetimes {
+        csv.serialize(l)?;
+    }
+    csv.flush()?;
+    let markdown = blow_up::markdown(scene, &lifetimes, saw.as_ref(), duration, command);
+    let md = out.join("blow_up.md");
+    std::fs::write(&md, &markdown).with_context(|| format!("writing {}", md.display()))?;
+    charts::register_font()?;
+    long_charts::write_blow_up(out, &lifetimes, saw.as_ref())?;
+    Ok(markdown)
 }

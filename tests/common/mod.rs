@@ -61,6 +61,18 @@ pub fn free_fall_residual(angle_deg: f64, frame: &Frame) -> f64 {
     across - phi0.cos() * frame.time * frame.time / 2.0
 }
 
+/// The largest free-fall residual of the tip until t = 1.2, before the bend reaches it: `kind`
+/// released straight at `angle_deg`, N = 100, its default step.
+pub fn worst_free_fall_residual(kind: MethodKind, angle_deg: f64) -> f64 {
+    let scene = Scene::Release { angle_deg };
+    let (outcome, frames) = run_frames(kind, scene, 100, kind.default_dt(100), 1.2, 100.0);
+    assert!(outcome.diverged.is_none(), "{:?}", outcome.diverged);
+    frames
+        .iter()
+        .map(|f| free_fall_residual(angle_deg, f).abs())
+        .fold(0.0, f64::max)
+}
+
 /// Measured angular frequency of the `mode` scene from the tip's zero crossings.
 pub fn mode_angular_frequency(kind: MethodKind, number: u32, segments: usize, dt: f64) -> f64 {
     let omega = rope::model::bessel::mode_frequency(number);

@@ -1,0 +1,83 @@
+//! The matrix A = G M⁻¹ Gᵀ of a chain of N uniform rods held together by their joints, the
+//! one `rattle` solves with, at one configuration, factorised by block Thomas in O(N).
+//!
+//! G is the Jacobian of the joint gaps g_j = end(rod j−1) − start(rod j) (the "end of rod −1"
+//! is the support). For joint j it has the blocks [I, (h/2) n_{j−1}] on rod j−1 (centre,
+//! angle) and [−I, (h/2) n_j] on rod j, n the rod's unit normal. With M = diag(h, h, h³/12)
+//! per rod, A is block-tridiagonal with 2×2 blocks, P = n nᵀ:
+//!
+//! * h A_00 = I + 3P_0;  h A_jj = 2I + 3P_{j−1} + 3P_j;  h A_{j,j+1} = h A_{j+1,j} = 3P_j − I,
+//!
+//! the same system as the chain's joint forces (`joint_forces.rs`). It is symmetric positive
+//! definite, so every pivot block is invertible.
+
+use nalgebra::{Matrix2, Vector2};
+
+/// h A at one configuration, factorised: D'_j = D_j − U_{j−1} D'_{j−1}⁻¹ U_{j−1}.
+#[derive(Clone, Debug)]
+pub(crate) struct ConstraintMatrix {
+    /// Unit normals n_i of the rods at the configuration (G's rotational entries).
+    pub(crate) normal: Vec<Vector2<f64>>,
+    /// D'_j⁻¹, the inverted pivots.
+    pivot: Vec<Matrix2<f64>>,
+    /// U_j = 3P_j − I, the off-diagonal blocks.
+    upper: Vec<Matrix2<f64>>,
+    /// D'_j⁻¹ U_j, for the back-substitution (zero for the last joint).
+    pub(crate) gain: Vec<Matrix2<f64>>,
+}
+
+impl ConstraintMatrix {
+    pub(crate) fn new(n: usize) -> Self {
+        Self {
+            normal: vec![Vector2::zeros(); n],
+            pivot: vec![Matrix2::zeros(); n],
+            upper: vec![Matrix2::zeros(); n],
+            gain: vec![Matrix2::zeros(); n],
+        }
+    }
+
+    /// Factorises h A for rods along the unit tangents `tangent`.
+    pub(crate) fn factorise(&mut self, tangent: &[Vector2<f64>]) {
+        let eye = Matrix2::identity();
+        let n = tangent.len();
+        for (normal, t) in self.normal.iter_mut().zip(tangent) {
+            *normal = Vector2::new(-t.y, t.x);
+        }
+        let projector = |v: &Vector2<f64>| 3.0 * v * v.transpose();
+        let mut p_prev = projector(&self.normal[0]);
+        let mut diag = eye + p_prev;
+        for j in 0..n {
+            if j > 0 {
+                let p = projector(&self.normal[j]);
+                diag = 2.0 * eye + p_prev + p - self.upper[j - 1] * self.gain[j - 1];
+                p_prev = p;
+            }
+            self.upper[j] = p_prev - eye;
+            // A non-finite configuration makes NaN here, which the caller detects.
+            self.pivot[j] = diag
+                .try_inverse()
+                .unwrap_or_else(|| Matrix2::from_element(f64::NAN));
+            self.gain[j] = if j + 1 < n {
+                self.pivot[j] * self.upper[j]
+            } else {
+                Matrix2::zeros()
+            };
+        }
+    }
+
+    /// The forward half of solving A x = r: `x` holds r on entry and y_j = D'_j⁻¹ (h r_j −
+    /// U_{j−1} y_{j−1}) on exit. Then x_j = y_j − gain_j x_{j+1}, from the last joint back,
+    /// which the caller fuses with what it does with x.
+    pub(crate) fn forward(&self, h: f64, x: &mut [Vector2<f64>]) {
+        let mut before = Vector2::zeros();
+        for (j, xj) in x.iter_mut().enumerate() {
+            let r = if j > 0 {
+                h * *xj - self.upper[j - 1] * before
+            } else {
+                h * *xj
+            };
+            before = self.pivot[j] * r;
+            *xj = before;
+        }
+    }
+}

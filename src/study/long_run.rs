@@ -1,0 +1,202 @@
+//! `rope study --long-run T`: each method from each release, left to swing for T time units
+//! at N = 100 and its default step. What it measures is whether the energy error stays
+//! bounded: |E − E_ref| at every frame (ten per time unit), kept as the largest in each of
+//! 50 log-spaced bins per decade of t, the least-squares slope of E(t), the largest joint gap
+//! (for `rattle`), and where a method diverged.
+
+use crate::error::Diverged;
+use crate::methods::{MethodKind, REPORT};
+use crate::model::Scene;
+use crate::run::simulate::{self, Options};
+use std::ops::ControlFlow;
+use std::time::Instant;
+
+/// Frames per time unit: every one is checked.
+const FRAMES_PER_UNIT: f64 = 10.0;
+/// Bins of the chart and CSV per decade of t.
+const BINS_PER_DECADE: f64 = 50.0;
+/// The first bin starts here.
+const FIRST_TIME: f64 = 0.1;
+
+/// The largest |E − E_ref| in one bin of time.
+#[derive(Clone, Copy, Debug, serde::Serialize)]
+pub struct Bin {
+    /// The bin's end, in time units.
+    pub t: f64,
+    pub max_abs_deviation: f64,
+}
+
+/// One method from one release, swung for a long time.
+#[derive(Clone, Debug)]
+pub struct LongRun {
+    pub method: MethodKind,
+    pub scene: Scene,
+    pub segments: usize,
+    pub dt: f64,
+    /// Time reached (the duration, unless it diverged).
+    pub time: f64,
+    pub bins: Vec<Bin>,
+    /// Largest |E − E_ref| over every frame.
+    pub max_abs_deviation: f64,
+    /// Least-squares slope of E(t) over every frame, per time unit.
+    pub slope: f64,
+    pub max_constraint_residual: Option<f64>,
+    pub diverged: Option<Diverged>,
+    /// Wall time of the run (the runs share the machine's cores, one each).
+    pub wall_seconds: f64,
+}
+
+/// Running sums for the least-squares slope of E against t.
+#[derive(Default)]
+struct Trend {
+    n: f64,
+    t: f64,
+    e: f64,
+    tt: f64,
+    te: f64,
+}
+
+impl Trend {
+    fn add(&mut self, t: f64, e: f64) {
+        self.n += 1.0;
+        self.t += t;
+        self.e += e;
+        self.tt += t * t;
+        self.te += t * e;
+    }
+
+    fn slope(&self) -> f64 {
+        (self.n * self.te - self.t * self.e) / (self.n * self.tt - self.t * self.t)
+    }
+}
+
+/// The bin of time `t`: 0 for t ≤ [`FIRST_TIME`], then 50 per decade.
+fn bin_of(t: f64) -> usize {
+    if t <= FIRST_TIME {
+        0
+    } else {
+        1 + ((t / FIRST_TIME).log10() * BINS_PER_DECADE).floor() as usize
+    }
+}
+
+/// The end of bin `i`.
+fn bin_end(i: usize) -> f64 {
+    FIRST_TIME * 10f64.powf(i as f64 / BINS_PER_DECADE)
+}
+
+/// Swings `method` from `scene` for `duration` time units at N = 100 and its default step;
+/// calls `tick` once per time unit simulated.
+pub fn run(
+    method: MethodKind,
+    scene: Scene,
+    duration: f64,
+    tick: impl Fn(),
+) -> anyhow::Result<LongRun> {
+    let segments = REPORT.segments;
+    let dt = method.default_dt(segments);
+    let mut stepper = method.build(&scene, segments, dt)?;
+    let reference = simulate::reference_energy(stepper.as_ref());
+    let mut bins: Vec<Bin> = Vec::new();
+    let mut trend = Trend::default();
+    let mut worst: f64 = 0.0;
+    let mut units = 0.0;
+    let wall = Instant::now();
+    let options = Options {
+        duration,
+        log_rate: FRAMES_PER_UNIT,
+    };
+    let outcome = simulate::run(stepper.as_mut(), &options, None, |frame| {
+        let deviation = frame.energy.total() - reference;
+        trend.add(frame.time, frame.energy.total());
+        worst = worst.max(deviation.abs());
+        let i = bin_of(frame.time);
+        if bins.len() <= i {
+            bins.resize_with(i + 1, || Bin {
+                t: 0.0,
+                max_abs_deviation: 0.0,
+            });
+        }
+        bins[i].t = bin_end(i);
+        bins[i].max_abs_deviation = bins[i].max_abs_deviation.max(deviation.abs());
+        while frame.time >= units + 1.0 {
+            units += 1.0;
+            tick();
+        }
+        ControlFlow::Continue(())
+    });
+    bins.retain(|b| b.t > 0.0);
+    // A run that ended early has no more work to show.
+    for _ in (units as u64)..(duration.ceil() as u64) {
+        tick();
+    }
+    Ok(LongRun {
+        method,
+        scene,
+        segments,
+        dt,
+        time: outcome.time,
+        bins,
+        max_abs_deviation: worst,
+        slope: trend.slope(),
+        max_constraint_residual: outcome.max_constraint_residual,
+        diverged: outcome.diverged,
+        wall_seconds: wall.elapsed().as_secs_f64(),
+    })
+}
+
+/// The runs as a Markdown table, with the command that made them.
+pub fn markdown(runs: &[LongRun], duration: f64, command: &str) -> String {
+    let mut text = format!(
+        "# Long runs: the energy over {duration} time units\n\n`{command}`\n\n\
+         N = {}, each method at its default step; E_ref is the energy after 10 steps, and \
+         every frame (ten per time unit) is checked.\n\n\
+         | method | scene | k | reached t | max \\|E − E_ref\\| | slope of E(t) per unit | largest joint gap | diverged | wall s |\n\
+         |---|---|---|---|---|---|---|---|---|\n",
+        REPORT.segments
+    );
+    for r in runs {
+        text += &format!(
+            "| {} | {} | {:.0e} | {:.1} | {:.2e} | {:.2e} | {} | {} | {:.0} |\n",
+            r.method,
+            r.scene,
+            r.dt,
+            r.time,
+            r.max_abs_deviation,
+            r.slope,
+            r.max_constraint_residual
+                .map_or("–".to_owned(), |g| format!("{g:.1e}")),
+            r.diverged.as_ref().map_or("no".to_owned(), |d| format!(
+                "t = {:.2}: {}",
+                d.time, d.reason
+            )),
+            r.wall_seconds
+        );
+    }
+    text
+}
+
+/// A CSV row: one bin of one run.
+#[derive(serde::Serialize)]
+struct CsvRow<'a> {
+    method: &'a str,
+    angle_deg: f64,
+    t: f64,
+    max_abs_deviation: f64,
+}
+
+/// Writes every run's bins to `path`.
+pub fn write_csv(runs: &[LongRun], path: &std::path::Path) -> anyhow::Result<()> {
+    let mut out = csv::Writer::from_path(path)?;
+    for r in runs {
+        for b in &r.bins {
+            out.serialize(CsvRow {
+                method: r.method.name(),
+                angle_deg: r.scene.support_angle().to_degrees(),
+                t: b.t,
+                max_abs_deviation: b.max_abs_deviation,
+            })?;
+        }
+    }
+    out.flush()?;
+    Ok(())
+}

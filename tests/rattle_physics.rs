@@ -1,0 +1,171 @@
+//! RATTLE on the chain of rods against physics: statics, free fall of the tip, Bernoulli's
+//! frequencies, second order in h and in k, joints that stay closed, and an energy error that
+//! stays bounded where the RK4 chain drifts.
+
+mod common;
+
+use common::*;
+use rope::methods::MethodKind;
+use rope::methods::error_model::ErrorModel;
+use rope::model::Scene;
+use rope::run::simulate::Frame;
+
+const RATTLE: MethodKind = MethodKind::Rattle;
+const THIRTY: Scene = Scene::Release { angle_deg: 30.0 };
+const HORIZONTAL: Scene = Scene::Release { angle_deg: 0.0 };
+const HANGING: Scene = Scene::Release { angle_deg: 90.0 };
+
+/// The largest joint gap over the frames of a run.
+fn widest_gap(frames: &[Frame]) -> f64 {
+    frames
+        .iter()
+        .map(|f| f.constraint_residual.expect("rattle reports its joints"))
+        .fold(0.0, f64::max)
+}
+
+/// Least-squares slope of the energy deviation against time, over frames from `from` on.
+fn energy_trend(frames: &[Frame], from: f64) -> f64 {
+    let points: Vec<(f64, f64)> = frames
+        .iter()
+        .filter(|f| f.time >= from)
+        .map(|f| (f.time, f.energy.total()))
+        .collect();
+    let n = points.len() as f64;
+    let (st, se) = points
+        .iter()
+        .fold((0.0, 0.0), |(a, b), (t, e)| (a + t, b + e));
+    let (mt, me) = (st / n, se / n);
+    let (sxy, sxx) = points.iter().fold((0.0, 0.0), |(a, b), (t, e)| {
+        (a + (t - mt) * (e - me), b + (t - mt) * (t - mt))
+    });
+    sxy / sxx
+}
+
+#[test]
+fn a_hanging_string_stays_put_with_tension_m_g_times_the_length_below() {
+    let n = 50;
+    let (outcome, frames) = run_frames(RATTLE, HANGING, n, RATTLE.default_dt(n), 2.0, 10.0);
+    assert!(outcome.diverged.is_none());
+    let last = frames.last().unwrap();
+    for node in &last.nodes {
+        assert!(
+            node.x.abs() < 1e-12,
+            "node moved sideways to x = {}",
+            node.x
+        );
+    }
+    assert!(
+        (last.tip().y - 1.0).abs() < 1e-12,
+        "tip at y = {}",
+        last.tip().y
+    );
+    // F(s) = m g (1 − s) at the middle of each rod.
+    for (i, &f) in last.tension.iter().enumerate() {
+        let below = 1.0 - (i as f64 + 0.5) / n as f64;
+        assert!(
+            (f - below).abs() < 1e-9,
+            "segment {i}: F = {f}, expected {below}"
+        );
+    }
+    assert!(widest_gap(&frames) < 1e-12);
+}
+
+#[test]
+fn horizontal_release_tip_falls_with_exactly_g_until_t_1_2() {
+    let (outcome, frames) = run_frames(RATTLE, HORIZONTAL, 100, RATTLE.default_dt(100), 1.2, 100.0);
+    assert!(outcome.diverged.is_none());
+    let worst = frames
+        .iter()
+        .map(|f| (f.tip().y - f.time * f.time / 2.0).abs())
+        .fold(0.0, f64::max);
+    assert!(worst < 1e-3, "largest |y_tip − t²/2| = {worst}");
+    assert!(
+        frames.last().unwrap().tip().x < 0.9,
+        "the tip is pulled inward"
+    );
+}
+
+#[test]
+fn thirty_degree_release_tip_follows_the_general_free_fall_law() {
+    let worst = worst_free_fall_residual(RATTLE, 30.0);
+    assert!(worst < 1e-3, "largest residual {worst}");
+}
+
+#[test]
+fn mode_frequencies_match_bernoulli_within_0_2_percent() {
+    for number in [1, 2] {
+        let exact = rope::model::bessel::mode_frequency(number);
+        let w = mode_angular_frequency(RATTLE, number, 100, RATTLE.default_dt(100));
+        assert!(
+            (w / exact - 1.0).abs() < 0.002,
+            "mode {number}: ω = {w}, Bernoulli {exact}"
+        );
+    }
+}
+
+#[test]
+fn tip_position_at_t1_converges_at_second_order_in_h() {
+    let tip = |n: usize| run_to(RATTLE, THIRTY, n, RATTLE.default_dt(n), 1.0).tip;
+    let fine = [tip(200), tip(400)];
+    let converged = fine[1] + (fine[1] - fine[0]) / 3.0; // Richardson, second order
+    let segments = [25, 50, 100, 200];
+    let errors: Vec<f64> = segments
+        .iter()
+        .map(|&n| (tip(n) - converged).norm())
+        .collect();
+    let order = fitted_order(&segments, &errors);
+    assert!(order >= 1.7, "order {order}, errors {errors:?}");
+    // The same rods as the RK4 chain: the same tip, to well within the spatial error.
+    let chain = run_to(MethodKind::Chain, THIRTY, 100, 2e-4, 1.0).tip;
+    assert!(
+        (tip(100) - chain).norm() < 0.05 * errors[2],
+        "rattle and chain differ"
+    );
+}
+
+#[test]
+fn tip_position_at_t_half_converges_at_second_order_in_k() {
+    let n = 40;
+    let tip =
+        |steps_per_unit: usize| run_to(RATTLE, THIRTY, n, 1.0 / steps_per_unit as f64, 0.5).tip;
+    let fine = [tip(16_000), tip(32_000)];
+    let converged = fine[1] + (fine[1] - fine[0]) / 3.0;
+    let rates = [250, 500, 1000, 2000];
+    let errors: Vec<(usize, f64)> = rates
+        .iter()
+        .map(|&r| (r, (tip(r) - converged).norm()))
+        .collect();
+    let order = ErrorModel::fit(errors.iter().copied()).unwrap().order;
+    assert!(
+        (1.8..2.2).contains(&order),
+        "order in k {order}, errors {errors:?}"
+    );
+}
+
+#[test]
+fn energy_stays_bounded_over_100_time_units_where_the_rk4_chain_drifts() {
+    let long = |kind: MethodKind| run_frames(kind, THIRTY, 100, kind.default_dt(100), 100.0, 10.0);
+    let (rattle, frames) = long(RATTLE);
+    let (chain, chain_frames) = long(MethodKind::Chain);
+    assert!(rattle.diverged.is_none() && chain.diverged.is_none());
+    assert!(
+        rattle.max_abs_deviation < 1e-5,
+        "rattle's energy strayed {:.3e}",
+        rattle.max_abs_deviation
+    );
+    assert!(
+        widest_gap(&frames) < 1e-11,
+        "the joints opened {:.1e}",
+        widest_gap(&frames)
+    );
+    // After the first whip (t > 10): the chain loses energy steadily, rattle does not.
+    let (drift, trend) = (
+        energy_trend(&chain_frames, 10.0),
+        energy_trend(&frames, 10.0),
+    );
+    assert!(drift < -2e-8, "the chain drifts {drift:.3e} per time unit");
+    assert!(
+        trend.abs() < 0.2 * drift.abs(),
+        "rattle's trend {trend:.3e} per time unit against the chain's {drift:.3e}"
+    );
+}
