@@ -178,10 +178,23 @@ impl StudyArgs {
             });
         }
         let scene = self.scene.scene()?;
-        crate::methods::REPORT
-            .method
-            .build(&scene, 4, 1e-3)
-            .map(|_| scene)
+        let method = crate::methods::REPORT.method;
+        method.build(&scene, 4, 1e-3)?;
+        // Every run of the map may last the whole duration.
+        let runs = crate::study::blow_up::cells();
+        let seconds: f64 = runs
+            .iter()
+            .map(|&(n, dt)| Cost::of_run(method, n, dt, duration, 0.0).seconds)
+            .sum();
+        if seconds > cost::LONG_SECONDS && !self.limits.yes {
+            return Err(ConfigError::LongRunTooLong {
+                flag: "blow-up",
+                fewer: "",
+                runs: runs.len(),
+                cost: cost::seconds_text(seconds),
+            });
+        }
+        Ok(scene)
     }
 
     /// Checks the flags of `--long-run`, naming the one that is wrong and what would work.
@@ -207,11 +220,12 @@ impl StudyArgs {
             seconds: costs.iter().map(|c| c.seconds).sum(),
             bytes: costs.iter().map(|c| c.bytes).sum(),
         };
-        let limits = self.limits.limits();
-        if cost.seconds > cost::LONG_SECONDS && !limits.yes {
-            return Err(ConfigError::StudyTooLong {
+        if cost.seconds > cost::LONG_SECONDS && !self.limits.yes {
+            return Err(ConfigError::LongRunTooLong {
+                flag: "long-run",
+                fewer: " (or fewer --methods and --angle)",
+                runs: costs.len(),
                 cost: cost::seconds_text(cost.seconds),
-                cells: costs.len(),
             });
         }
         Ok(LongRunPlan {

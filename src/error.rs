@@ -110,6 +110,16 @@ pub enum ConfigError {
     StudyDuration(f64),
     #[error("{flag} = {duration}: give a finite number of time units > 0 (for example 10000)")]
     LongRunDuration { flag: &'static str, duration: f64 },
+    #[error(
+        "{flag}: the {runs} runs are predicted to take about {cost} of CPU, more than a day; give a shorter --{flag}{fewer}, or --yes to run them anyway"
+    )]
+    LongRunTooLong {
+        flag: &'static str,
+        /// What else would shorten them.
+        fewer: &'static str,
+        runs: usize,
+        cost: String,
+    },
     #[error("dts: {0} is not a positive, finite time step (for example 1e-4)")]
     StudyTimeStep(f64),
     #[error("segments: {segments} is too few (every method needs at least {min})")]

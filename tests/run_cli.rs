@@ -474,6 +474,9 @@ fn a_long_run_study_charts_the_energy_and_leaves_out_what_cannot_start() {
     for file in ["long_run.csv", "long_run.svg", "long_run.png"] {
         assert!(dir.path("long").join(file).exists(), "{file} not written");
     }
+    let endless = rope(&["study", "--long-run", "1e300"]);
+    assert_eq!(endless.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&endless.stderr).contains("--yes to run them anyway"));
     let bad = rope(&["study", "--long-run", "-1"]);
     assert_eq!(bad.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&bad.stderr).contains("long-run = -1"));
@@ -504,6 +507,9 @@ fn a_blow_up_study_maps_the_seed_schemes_lifetime() {
     let bad = rope(&["study", "--blow-up", "inf"]);
     assert_eq!(bad.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&bad.stderr).contains("blow-up = inf"));
+    let endless = rope(&["study", "--blow-up", "1e300"]);
+    assert_eq!(endless.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&endless.stderr).contains("blow-up: the 30 runs"));
     let horizontal = rope(&["study", "--blow-up", "2", "--angle", "0"]);
     assert_eq!(
         horizontal.status.code(),

@@ -23,19 +23,24 @@ pub struct Lifetime {
     pub diverged_at: Option<f64>,
 }
 
-/// The report's method from `scene` over [`SEGMENTS`] × [`FRACTIONS`], each run to
-/// `duration` or its divergence, in parallel. `tick` is called once per run done.
-pub fn lifetimes(scene: &Scene, duration: f64, tick: impl Fn() + Sync) -> Vec<Lifetime> {
+/// The (N, k) of every run of the map: [`SEGMENTS`] × [`FRACTIONS`] of the limit.
+pub fn cells() -> Vec<(usize, f64)> {
     let method = REPORT.method;
-    let cells: Vec<(usize, f64)> = SEGMENTS
+    SEGMENTS
         .iter()
         .flat_map(|&n| {
             FRACTIONS
                 .iter()
                 .map(move |&f| (n, f * method.stability_limit(n)))
         })
-        .collect();
-    cells
+        .collect()
+}
+
+/// The report's method from `scene` over [`SEGMENTS`] × [`FRACTIONS`], each run to
+/// `duration` or its divergence, in parallel. `tick` is called once per run done.
+pub fn lifetimes(scene: &Scene, duration: f64, tick: impl Fn() + Sync) -> Vec<Lifetime> {
+    let method = REPORT.method;
+    cells()
         .par_iter()
         .map(|&(segments, dt)| {
             let diverged_at = method.build(scene, segments, dt).ok().and_then(|mut m| {
