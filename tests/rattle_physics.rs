@@ -105,20 +105,14 @@ fn mode_frequencies_match_bernoulli_within_0_2_percent() {
 
 #[test]
 fn tip_position_at_t1_converges_at_second_order_in_h() {
-    let tip = |n: usize| run_to(RATTLE, THIRTY, n, RATTLE.default_dt(n), 1.0).tip;
-    let fine = [tip(200), tip(400)];
-    let converged = fine[1] + (fine[1] - fine[0]) / 3.0; // Richardson, second order
     let segments = [25, 50, 100, 200];
-    let errors: Vec<f64> = segments
-        .iter()
-        .map(|&n| (tip(n) - converged).norm())
-        .collect();
+    let errors = tip_errors_against_richardson(RATTLE, &segments);
     let order = fitted_order(&segments, &errors);
     assert!(order >= 1.7, "order {order}, errors {errors:?}");
     // The same rods as the RK4 chain: the same tip, to well within the spatial error.
     let chain = run_to(MethodKind::Chain, THIRTY, 100, 2e-4, 1.0).tip;
     assert!(
-        (tip(100) - chain).norm() < 0.05 * errors[2],
+        (tip_at_t1(RATTLE, 100) - chain).norm() < 0.05 * errors[2],
         "rattle and chain differ"
     );
 }

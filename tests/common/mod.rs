@@ -61,6 +61,23 @@ pub fn free_fall_residual(angle_deg: f64, frame: &Frame) -> f64 {
     across - phi0.cos() * frame.time * frame.time / 2.0
 }
 
+/// The tip at t = 1 of the 30° release, at `segments` and the method's default step.
+pub fn tip_at_t1(kind: MethodKind, segments: usize) -> rope::model::Point {
+    let thirty = Scene::Release { angle_deg: 30.0 };
+    run_to(kind, thirty, segments, kind.default_dt(segments), 1.0).tip
+}
+
+/// The tip errors at t = 1 of the 30° release for `segments`, against the second-order
+/// Richardson extrapolation from N = 200 and 400.
+pub fn tip_errors_against_richardson(kind: MethodKind, segments: &[usize]) -> Vec<f64> {
+    let fine = [tip_at_t1(kind, 200), tip_at_t1(kind, 400)];
+    let converged = fine[1] + (fine[1] - fine[0]) / 3.0;
+    segments
+        .iter()
+        .map(|&n| (tip_at_t1(kind, n) - converged).norm())
+        .collect()
+}
+
 /// The largest free-fall residual of the tip until t = 1.2, before the bend reaches it: `kind`
 /// released straight at `angle_deg`, N = 100, its default step.
 pub fn worst_free_fall_residual(kind: MethodKind, angle_deg: f64) -> f64 {
