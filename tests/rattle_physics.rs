@@ -9,6 +9,7 @@ use rope::methods::MethodKind;
 use rope::methods::error_model::ErrorModel;
 use rope::model::Scene;
 use rope::run::simulate::Frame;
+use rope::study::long_run::Trend;
 
 const RATTLE: MethodKind = MethodKind::Rattle;
 const THIRTY: Scene = Scene::Release { angle_deg: 30.0 };
@@ -23,22 +24,13 @@ fn widest_gap(frames: &[Frame]) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// Least-squares slope of the energy deviation against time, over frames from `from` on.
+/// Least-squares slope of the energy against time, over frames from `from` on.
 fn energy_trend(frames: &[Frame], from: f64) -> f64 {
-    let points: Vec<(f64, f64)> = frames
-        .iter()
-        .filter(|f| f.time >= from)
-        .map(|f| (f.time, f.energy.total()))
-        .collect();
-    let n = points.len() as f64;
-    let (st, se) = points
-        .iter()
-        .fold((0.0, 0.0), |(a, b), (t, e)| (a + t, b + e));
-    let (mt, me) = (st / n, se / n);
-    let (sxy, sxx) = points.iter().fold((0.0, 0.0), |(a, b), (t, e)| {
-        (a + (t - mt) * (e - me), b + (t - mt) * (t - mt))
-    });
-    sxy / sxx
+    let mut trend = Trend::default();
+    for f in frames.iter().filter(|f| f.time >= from) {
+        trend.add(f.time, f.energy.total());
+    }
+    trend.slope()
 }
 
 #[test]

@@ -82,7 +82,7 @@ fn legend<'a, 'b, DB: DrawingBackend + 'a, CT: plotters::coord::CoordTranslate>(
 /// land on values like 9.999999999999998e-5 that should read 1e-4).
 fn tick(v: &f64) -> String {
     let a = v.abs();
-    if a < 1e-12 {
+    if a == 0.0 {
         "0".to_owned()
     } else if (1e-2..1e4).contains(&a) {
         let digits = (3 - a.log10().floor() as i32 - 1).max(0) as usize;
@@ -378,8 +378,20 @@ pub(crate) fn lines<DB: DrawingBackend>(
         (lo - pad)..(hi + pad)
     };
     let (xv, yv): (Vec<f64>, Vec<f64>) = (xs.collect(), ys.collect());
+    // A linear axis through zero gets a tick computed as, say, −6e-17: it reads 0. (On a log
+    // axis no tick is zero, and 1e-13 must stay 1e-13.)
+    let snapped = |range: &Range<f64>| {
+        let eps = 1e-9 * (range.end - range.start).abs();
+        move |v: &f64| {
+            if v.abs() < eps {
+                "0".to_owned()
+            } else {
+                tick(v)
+            }
+        }
+    };
     macro_rules! draw {
-        ($x:expr, $y:expr) => {{
+        ($x:expr, $y:expr, $x_tick:expr, $y_tick:expr) => {{
             let mut chart = ChartBuilder::on(root)
                 .caption(title, (SANS, 20))
                 .margin(14)
@@ -390,8 +402,8 @@ pub(crate) fn lines<DB: DrawingBackend>(
                 .configure_mesh()
                 .x_desc(x_desc)
                 .y_desc(y_desc)
-                .x_label_formatter(&tick)
-                .y_label_formatter(&tick)
+                .x_label_formatter(&$x_tick)
+                .y_label_formatter(&$y_tick)
                 .label_style((SANS, 13))
                 .draw()?;
             for (name, color, pts) in series {
@@ -416,11 +428,25 @@ pub(crate) fn lines<DB: DrawingBackend>(
     match log {
         (true, true) => draw!(
             log_range(xv.into_iter()).log_scale(),
-            log_range(yv.into_iter()).log_scale()
+            log_range(yv.into_iter()).log_scale(),
+            tick,
+            tick
         ),
-        (false, true) => draw!(linear(xv), log_range(yv.into_iter()).log_scale()),
-        (true, false) => draw!(log_range(xv.into_iter()).log_scale(), linear(yv)),
-        (false, false) => draw!(linear(xv), linear(yv)),
+        (false, true) => {
+            let x = linear(xv);
+            let x_tick = snapped(&x);
+            draw!(x, log_range(yv.into_iter()).log_scale(), x_tick, tick)
+        }
+        (true, false) => {
+            let y = linear(yv);
+            let y_tick = snapped(&y);
+            draw!(log_range(xv.into_iter()).log_scale(), y, tick, y_tick)
+        }
+        (false, false) => {
+            let (x, y) = (linear(xv), linear(yv));
+            let (x_tick, y_tick) = (snapped(&x), snapped(&y));
+            draw!(x, y, x_tick, y_tick)
+        }
     }
     Ok(())
 }

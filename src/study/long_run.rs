@@ -46,27 +46,32 @@ pub struct LongRun {
     pub wall_seconds: f64,
 }
 
-/// Running sums for the least-squares slope of E against t.
+/// The least-squares slope of a series (E against t), kept as running means and centred
+/// sums (Welford's update), so that a long series loses no digits to cancellation.
 #[derive(Default)]
-struct Trend {
+pub struct Trend {
     n: f64,
-    t: f64,
-    e: f64,
-    tt: f64,
-    te: f64,
+    mean_t: f64,
+    mean_e: f64,
+    /// Σ (t − t̄)(e − ē) and Σ (t − t̄)².
+    co: f64,
+    var: f64,
 }
 
 impl Trend {
-    fn add(&mut self, t: f64, e: f64) {
+    /// Adds the point (t, e).
+    pub fn add(&mut self, t: f64, e: f64) {
         self.n += 1.0;
-        self.t += t;
-        self.e += e;
-        self.tt += t * t;
-        self.te += t * e;
+        let dt = t - self.mean_t;
+        self.mean_t += dt / self.n;
+        self.mean_e += (e - self.mean_e) / self.n;
+        self.co += dt * (e - self.mean_e);
+        self.var += dt * (t - self.mean_t);
     }
 
-    fn slope(&self) -> f64 {
-        (self.n * self.te - self.t * self.e) / (self.n * self.tt - self.t * self.t)
+    /// The least-squares slope of the points added.
+    pub fn slope(&self) -> f64 {
+        self.co / self.var
     }
 }
 

@@ -115,13 +115,16 @@ pub fn execute_long_runs(
     std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
     // A method that cannot start from a scene (the seed from the horizontal) is left out,
     // with its reason in the Markdown.
-    let (pairs, left_out): (Vec<_>, Vec<_>) = methods
-        .iter()
-        .flat_map(|&m| scenes.iter().map(move |&s| (m, s)))
-        .partition(|&(m, s)| {
-            m.build(&s, REPORT.segments, m.default_dt(REPORT.segments))
-                .is_ok()
-        });
+    let mut pairs = Vec::new();
+    let mut left_out = Vec::new();
+    for &m in methods {
+        for &s in scenes {
+            match m.build(&s, REPORT.segments, m.default_dt(REPORT.segments)) {
+                Ok(_) => pairs.push((m, s)),
+                Err(err) => left_out.push(format!("\nLeft out: {m} from the {s}: {err}.\n")),
+            }
+        }
+    }
     for _ in 0..left_out.len() as u64 * duration.ceil() as u64 {
         tick();
     }
@@ -131,12 +134,7 @@ pub fn execute_long_runs(
         .collect::<anyhow::Result<Vec<_>>>()?;
     let csv = out.join("long_run.csv");
     long_run::write_csv(&runs, &csv).with_context(|| format!("writing {}", csv.display()))?;
-    let mut markdown = long_run::markdown(&runs, duration, command);
-    for (m, s) in left_out {
-        if let Err(err) = m.build(&s, REPORT.segments, m.default_dt(REPORT.segments)) {
-            markdown += &format!("\nLeft out: {m} from the {s}: {err}.\n");
-        }
-    }
+    let markdown = long_run::markdown(&runs, duration, command) + &left_out.concat();
     let md = out.join("long_run.md");
     std::fs::write(&md, &markdown).with_context(|| format!("writing {}", md.display()))?;
     charts::register_font()?;
