@@ -18,6 +18,7 @@ fn config() -> RunPlan {
         segments: REPORT.segments,
         dt: Some(REPORT.dt),
         duration: 1.0,
+        error_estimate: false, // its cost is `benches/estimate.rs`'s
         ..RunConfig::default()
     }
     .validate()

@@ -67,7 +67,7 @@ for ((r = 1; r <= runs; r++)); do
         add --amplitude "${numbers[@]}"
     fi
     ((RANDOM % 4 == 0)) && add --log-rate "${numbers[@]}" 60 1000
-    ((RANDOM % 5 == 0)) && add --tolerance "${numbers[@]}" 1e-2 1e-4 1e-12
+    ((RANDOM % 5 == 0)) && add --tolerance "${numbers[@]}" 1e-2 3e-3 1e-12
     ((RANDOM % 5 == 0)) && add --realtime 100 1000 0 -1 nan
     ((RANDOM % 6 == 0)) && add --loop 1 2 0 -1 x
     ((RANDOM % 6 == 0)) && add --max-memory 1MB 100MB 64GB 50% 0 x

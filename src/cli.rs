@@ -139,8 +139,70 @@ pub struct StudyArgs {
     )]
     pub blow_up: Option<f64>,
 
+    /// Instead of the grid: check the live error estimate against the truth. Each method of
+    /// --methods at N = 25, 50, 100, 200 with its shadow at N/2, from the releases at 0°, 30°,
+    /// 60°, 90° and modes 1 and 2, to t = 3, against the reference method at N = 1600 at every
+    /// frame; also fits each method's error model over all those scenes (the scene flags,
+    /// --segments, --dts and --duration are not used).
+    #[arg(long, conflicts_with_all = ["long_run", "blow_up"])]
+    pub estimate_check: bool,
+
+    /// Run only shard I of N of the grid (the cells whose place in the grid's fixed order is
+    /// I modulo N) and write a partial study.csv and its manifest shard.json into --out, for
+    /// `--merge` to put together. Shards may run anywhere: in parallel here, or as a job array.
+    #[arg(long, value_name = "I/N", conflicts_with_all = ["long_run", "blow_up", "estimate_check", "merge", "reference_only"])]
+    pub shard: Option<crate::study::shard::Shard>,
+
+    /// Compute only the reference and write it to --out/reference.json, for every shard to
+    /// read with --reference instead of computing it again.
+    #[arg(long, conflicts_with_all = ["long_run", "blow_up", "estimate_check", "merge"])]
+    pub reference_only: bool,
+
+    /// The reference to measure against, as written by --reference-only (of the same scene,
+    /// --duration and --reference-segments).
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["long_run", "blow_up", "estimate_check", "merge", "reference_only"])]
+    pub reference: Option<PathBuf>,
+
+    /// Put the shards in these directories together (each the --out of a `--shard I/N`
+    /// run of one study) and write the whole study's study.csv, findings.md and charts into
+    /// --out. Every shard must be there once.
+    #[arg(long, value_name = "DIR", num_args = 1.., conflicts_with_all = ["long_run", "blow_up", "estimate_check"])]
+    pub merge: Option<Vec<PathBuf>>,
+
     #[command(flatten)]
     pub limits: LimitArgs,
+}
+
+/// The reference `--reference FILE` names, read and checked against the study `plan`.
+pub fn reference_file(
+    path: &std::path::Path,
+    plan: &StudyPlan,
+) -> Result<crate::study::shard::ReferenceFile, ConfigError> {
+    let shown = path.display().to_string();
+    let unreadable = |reason: String| ConfigError::ReferenceUnreadable {
+        path: shown.clone(),
+        reason,
+    };
+    let text = std::fs::read_to_string(path).map_err(|e| unreadable(e.to_string()))?;
+    let file: crate::study::shard::ReferenceFile =
+        serde_json::from_str(&text).map_err(|e| unreadable(format!("not a reference: {e}")))?;
+    let of = |scene: &Scene, duration: f64, finest: usize| {
+        format!("{scene} to t = {duration} at N = {finest}")
+    };
+    let ours = of(
+        &plan.spec.scene,
+        plan.spec.duration,
+        plan.reference_segments,
+    );
+    let theirs = of(&file.scene, file.duration, file.finest);
+    if ours != theirs {
+        return Err(ConfigError::ReferenceOfAnotherStudy {
+            path: shown,
+            theirs,
+            ours,
+        });
+    }
+    Ok(file)
 }
 
 /// A validated `rope study --long-run`: its runs and what they will cost.
@@ -265,7 +327,15 @@ impl StudyArgs {
             segments: self.segments.clone(),
             dts,
         };
-        let cost = crate::study::cost(&spec, reference_segments, rayon::current_num_threads());
+        // What this command runs: the whole grid, one shard of it, or the reference alone;
+        // the reference unless it is read from a file.
+        let cells = match (self.reference_only, self.shard) {
+            (true, _) => Vec::new(),
+            (false, Some(shard)) => shard.cells(&spec),
+            (false, None) => spec.cells(),
+        };
+        let computed = self.reference.is_none().then_some(reference_segments);
+        let cost = crate::study::cost_of(&spec, &cells, computed, rayon::current_num_threads());
         let limits = self.limits.limits();
         if cost.bytes > limits.memory() {
             return Err(ConfigError::StudyTooMuchMemory {
@@ -277,7 +347,7 @@ impl StudyArgs {
         if cost.seconds > cost::LONG_SECONDS && !limits.yes {
             return Err(ConfigError::StudyTooLong {
                 cost: cost::seconds_text(cost.seconds),
-                cells: spec.cells().len(),
+                cells: cells.len(),
             });
         }
         Ok(StudyPlan {
@@ -324,8 +394,9 @@ pub struct RunArgs {
     pub repeat: Option<Passes>,
 
     /// Choose method, segments and time step for a tip-position error of at most EPS (string
-    /// lengths) at the final time, from the error model fitted to `rope study`; prints the
-    /// choice, its predicted error and cost.
+    /// lengths) at every frame, from the error models `rope study --estimate-check` fitted
+    /// over six scenes; prints the choice, its predicted error and cost. The run then watches its live error estimate,
+    /// says when it passes EPS, and reports `tolerance_met` in the summary.
     #[arg(long, value_name = "EPS", allow_negative_numbers = true, conflicts_with_all = ["method", "segments", "dt"])]
     pub tolerance: Option<f64>,
 
@@ -350,6 +421,12 @@ pub struct RunArgs {
     /// Run a seed time step past the estimated stability limit anyway (to watch it fail).
     #[arg(long)]
     pub allow_unstable: bool,
+
+    /// Leave out the live error estimate: the shadow run at N/2 that puts
+    /// `error/tip_estimate` on the timeline and in the summary (it costs about a fifth of
+    /// the run; --tolerance needs it).
+    #[arg(long, conflicts_with = "tolerance")]
+    pub no_error_estimate: bool,
 
     #[command(flatten)]
     pub limits: LimitArgs,
@@ -428,6 +505,8 @@ impl RunArgs {
             realtime: self.realtime,
             allow_unstable: self.allow_unstable,
             limits: self.limits.limits(),
+            error_estimate: !self.no_error_estimate,
+            tolerance: self.tolerance,
         };
         let (config, choice) = match self.tolerance {
             None => (asked, None),

@@ -71,7 +71,7 @@ pub enum ConfigError {
         longest: f64,
     },
     #[error(
-        "segments: the study is predicted to take about {cost} of CPU ({cells} runs), more than a day; use fewer or smaller --segments, fewer or larger --dts, a shorter --duration, or add --yes"
+        "segments: the study is predicted to take about {cost} of CPU ({cells} runs), more than a day; use fewer or smaller --segments, fewer or larger --dts, a shorter --duration, split it over machines with --shard I/N, or add --yes"
     )]
     StudyTooLong { cost: String, cells: usize },
     #[error(
@@ -128,6 +128,16 @@ pub enum ConfigError {
         "reference-segments = {0}: must be an even number ≥ 4 (the reference is extrapolated from N and N/2)"
     )]
     ReferenceSegments(usize),
+    #[error(
+        "reference = {path}: it is the reference of the {theirs}; this study is of the {ours}; compute one with `rope study --reference-only` and the same scene, --duration and --reference-segments"
+    )]
+    ReferenceOfAnotherStudy {
+        path: String,
+        theirs: String,
+        ours: String,
+    },
+    #[error("reference = {path}: {reason}; write one with `rope study --reference-only --out DIR`")]
+    ReferenceUnreadable { path: String, reason: String },
     #[error("mode-number = {0}: must be 1, 2, 3 or 4")]
     ModeNumber(u32),
     #[error(

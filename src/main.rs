@@ -118,7 +118,7 @@ fn announce(args: &RunArgs, plans: &[Planned]) {
             String::new()
         };
         eprintln!(
-            "rope: tolerance {:e}{scene}: chose the {} method, N = {}, k = {:e}; predicted tip error {:.1e}, predicted cost {:.2e} CPU s (error model fitted by `rope study` on the 30° release)",
+            "rope: tolerance {:e}{scene}: chose the {} method, N = {}, k = {:e}; predicted tip error at most {:.1e}, predicted cost {:.2e} CPU s (error model fitted to t = 3 over six scenes by `rope study --estimate-check`; the live estimate will say if it holds)",
             args.tolerance.unwrap_or_default(),
             choice.method,
             choice.segments,
@@ -174,7 +174,12 @@ fn run_passes(
         pass += 1;
         for Planned { plan, .. } in plans {
             let progress = Progress::new(plan.duration);
-            let summary = rope::run::pipeline::run(plan, logger, stop, &|t| progress.at(t))?;
+            let summary = rope::run::pipeline::run(plan, logger, stop, &|frame| {
+                progress.at(frame.time);
+                if frame.tolerance_exceeded {
+                    progress.say(&tolerance_notice(plan, frame));
+                }
+            })?;
             progress.finish();
             if several {
                 let line = summary.human();
@@ -188,6 +193,17 @@ fn run_passes(
         }
     }
     last.context("no run was made")
+}
+
+/// What a run says, once, when its error estimate passes the tolerance.
+fn tolerance_notice(plan: &rope::run::RunPlan, frame: &rope::run::Frame) -> String {
+    format!(
+        "rope: at t = {:.3} the estimated tip error {:.1e} passed the tolerance {:.1e} (N = {}); the run goes on, and its summary says tolerance_met: false",
+        frame.time,
+        frame.error_estimate.map_or(f64::NAN, |e| e.tip),
+        plan.tolerance.unwrap_or(f64::NAN),
+        plan.segments
+    )
 }
 
 /// Why the viewer that was the only destination is gone, if it is: that says more than a
@@ -260,6 +276,12 @@ fn study(args: &StudyArgs) -> anyhow::Result<ExitCode> {
     if let Some(duration) = args.blow_up {
         return blow_up(args, duration);
     }
+    if args.estimate_check {
+        return estimate_check(args);
+    }
+    if let Some(dirs) = &args.merge {
+        return merge(args, dirs);
+    }
     let plan = match args.plan() {
         Ok(plan) => plan,
         Err(err) => return Ok(bad_input(&err)),
@@ -280,20 +302,65 @@ fn study(args: &StudyArgs) -> anyhow::Result<ExitCode> {
             cost::bytes_text(plan.cost.bytes)
         );
     }
-    let cells = (spec.methods.len() * spec.segments.len() * spec.dts.len()) as u64;
+    let reference = match args
+        .reference
+        .as_deref()
+        .map(|p| rope::cli::reference_file(p, &plan))
+    {
+        Some(Ok(file)) => Some(file),
+        Some(Err(err)) => return Ok(bad_input(&err)),
+        None => None,
+    };
+    if args.reference_only {
+        let path = rope::study::execute_reference_only(spec, plan.reference_segments, &args.out)?;
+        eprintln!(
+            "rope study: wrote the reference to {}; give it to each shard with --reference",
+            path.display()
+        );
+        return Ok(ExitCode::SUCCESS);
+    }
+    let cells = match args.shard {
+        Some(shard) => shard.cells(spec).len(),
+        None => spec.cells().len(),
+    } as u64;
     eprintln!(
-        "rope study: {cells} runs ({} methods × {} N × {} k) on {} threads, reference at N = {}",
+        "rope study: {cells} runs ({} methods × {} N × {} k{}) on {} threads, reference at N = {}{}",
         spec.methods.len(),
         spec.segments.len(),
         spec.dts.len(),
+        args.shard.map_or(String::new(), |s| format!(", shard {s}")),
         rayon::current_num_threads(),
-        plan.reference_segments
+        plan.reference_segments,
+        if reference.is_some() { " (read)" } else { "" }
     );
     let counter = Counter::new(cells, "rope study", "runs");
     let command = std::env::args().collect::<Vec<_>>().join(" ");
-    let outcome = rope::study::execute(spec, plan.reference_segments, &args.out, &command, || {
-        counter.inc()
-    })?;
+    if let Some(shard) = args.shard {
+        rope::study::execute_shard(
+            spec,
+            shard,
+            reference,
+            plan.reference_segments,
+            &args.out,
+            || counter.inc(),
+        )?;
+        counter.finish();
+        eprintln!(
+            "rope study: wrote shard {shard}'s study.csv and shard.json to {}; put the shards together with `rope study --merge DIR…`",
+            args.out.display()
+        );
+        return Ok(ExitCode::SUCCESS);
+    }
+    let outcome = match reference {
+        Some(file) => {
+            rope::study::execute_with(spec, file.reference(), &args.out, &command, || {
+                counter.inc()
+            })?
+        }
+        None => rope::study::execute(spec, plan.reference_segments, &args.out, &command, || {
+            counter.inc()
+        })?,
+    };
     counter.finish();
     if let Some(path) = &args.save {
         let rec = rerun::RecordingStreamBuilder::new("rope-study")
@@ -344,6 +411,63 @@ fn long_runs(args: &StudyArgs, duration: f64) -> anyhow::Result<ExitCode> {
     println!("{markdown}");
     eprintln!(
         "rope study: wrote long_run.csv, long_run.md and the chart to {}",
+        args.out.display()
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `rope study --merge DIR…`: the shards of a study put together.
+fn merge(args: &StudyArgs, dirs: &[std::path::PathBuf]) -> anyhow::Result<ExitCode> {
+    if let Err(err) = writable_dir("out", &args.out) {
+        return Ok(bad_input(&err));
+    }
+    let command = std::env::args().collect::<Vec<_>>().join(" ");
+    let outcome = match rope::study::execute_merge(dirs, &args.out, &command) {
+        Ok(outcome) => outcome,
+        Err(err) => match err.downcast_ref::<rope::study::shard::MergeError>() {
+            Some(merge) => return Ok(bad_input(merge)),
+            None => return Err(err),
+        },
+    };
+    println!("{}", outcome.markdown);
+    eprintln!(
+        "rope study: merged {} shards ({} runs) into study.csv, findings.md and the charts in {}",
+        dirs.len(),
+        outcome.rows.len(),
+        args.out.display()
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `rope study --estimate-check`: the live error estimate against the truth.
+fn estimate_check(args: &StudyArgs) -> anyhow::Result<ExitCode> {
+    if let Err(err) = writable_dir("out", &args.out) {
+        return Ok(bad_input(&err));
+    }
+    let spec = rope::study::estimate_check::CheckSpec {
+        methods: args.methods.clone(),
+        ..Default::default()
+    };
+    let cells = spec.methods.len() * spec.scenes.len() * spec.segments.len();
+    eprintln!(
+        "rope study: {} references at N = {} and {cells} runs with their shadows, to t = {}, on {} threads",
+        spec.scenes.len(),
+        spec.reference_segments,
+        spec.duration,
+        rayon::current_num_threads()
+    );
+    let counter = Counter::new(
+        (spec.scenes.len() + cells) as u64,
+        "rope study",
+        "references and runs",
+    );
+    let command = std::env::args().collect::<Vec<_>>().join(" ");
+    let markdown =
+        rope::study::execute_estimate_check(&spec, &args.out, &command, || counter.inc())?;
+    counter.finish();
+    println!("{markdown}");
+    eprintln!(
+        "rope study: wrote estimate_check.md, estimate_check.csv and estimate_check.png to {}",
         args.out.display()
     );
     Ok(ExitCode::SUCCESS)

@@ -282,7 +282,7 @@ fn tolerance_flag_prints_its_choice_and_runs_it() {
     let out = rope(&[
         "run",
         "--tolerance",
-        "1e-4",
+        "1e-2",
         "--duration",
         "1",
         "--save",
@@ -294,12 +294,16 @@ fn tolerance_flag_prints_its_choice_and_runs_it() {
     assert!(out.status.success(), "{stderr}");
     // The method the rule picks (every limit is far off at this tolerance).
     let scene = rope::model::Scene::Release { angle_deg: 30.0 };
-    let rule = rope::methods::tolerance::choose(1e-4, 1.0, &scene, |_, _, _| true).unwrap();
+    let rule = rope::methods::tolerance::choose(1e-2, 1.0, &scene, |_, _, _| true).unwrap();
     assert!(
-        stderr.contains(&format!("tolerance 1e-4: chose the {} method", rule.method)),
+        stderr.contains(&format!("tolerance 1e-2: chose the {} method", rule.method)),
         "{stderr}"
     );
-    assert_eq!(summary(&json)["method"], rule.method.name());
+    let s = summary(&json);
+    assert_eq!(s["method"], rule.method.name());
+    // The run says whether the live estimate kept to it.
+    assert_eq!(s["tolerance"], 1e-2);
+    assert!(s["tolerance_met"].is_boolean(), "{s}");
     let clash = rope(&[
         "run",
         "--tolerance",

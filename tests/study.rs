@@ -1,9 +1,8 @@
 //! The study's mechanics on tiny grids (rows, statuses, the reference's error estimate,
-//! chart files), the committed error model against a fresh fit, and the tolerance rule
-//! against a fine reference. Timings are not tested here (they live in benchmarks).
+//! chart files). The error models and the tolerance rule are `tests/estimate.rs`'s. Timings
+//! are not tested here (they live in benchmarks).
 
 use rope::methods::MethodKind;
-use rope::methods::tolerance::{self, Choice};
 use rope::model::Scene;
 use rope::study::{self, Spec, Status};
 
@@ -91,73 +90,4 @@ fn seed_runs_from_the_horizontal_are_refused_and_the_chain_runs() {
     assert!(matches!(&seed.status, Status::Refused { reason } if reason.contains("horizontal")));
     let chain = rows.iter().find(|r| r.method == MethodKind::Chain).unwrap();
     assert_eq!(chain.status, Status::Ok);
-}
-
-#[test]
-fn committed_error_model_agrees_with_a_fresh_fit() {
-    let spec = Spec {
-        scene: THIRTY,
-        duration: 1.0,
-        methods: MethodKind::ALL.to_vec(),
-        segments: vec![25, 50, 100, 200],
-        dts: vec![2e-4],
-    };
-    let reference = study::reference(&THIRTY, 1.0, 800).unwrap();
-    let mut rows = study::run_grid(&spec, || {});
-    study::measure_errors(&mut rows, &reference);
-    for method in MethodKind::ALL {
-        let fresh = study::fit(&rows, method, 20).expect("enough points to fit");
-        let committed = method.descriptor().error_model;
-        assert!(
-            (fresh.order - committed.order).abs() < 0.15,
-            "{method}: {fresh:?} vs {committed:?}"
-        );
-        let ratio = fresh.predict(100) / committed.predict(100);
-        assert!(
-            (0.5..2.0).contains(&ratio),
-            "{method}: {fresh:?} vs {committed:?}"
-        );
-    }
-}
-
-#[test]
-fn tolerance_rule_meets_each_tolerance_and_the_looser_one_is_cheaper() {
-    let reference = study::reference(&THIRTY, 1.0, 800).unwrap();
-    let mut choices = Vec::new();
-    for tolerance in [1e-2, 1e-5] {
-        let choice =
-            tolerance::choose(tolerance, 1.0, &THIRTY, |_, _, _| true).expect("a method can do it");
-        let row = study::run_cell(&THIRTY, 1.0, choice.method, choice.segments, choice.dt);
-        let achieved = (row.tip.unwrap() - reference.tip).norm();
-        assert!(
-            achieved <= tolerance,
-            "tolerance {tolerance}: {choice:?} achieved {achieved}"
-        );
-        choices.push(choice);
-    }
-    assert!(
-        choices[0].predicted_seconds < choices[1].predicted_seconds,
-        "{choices:?}"
-    );
-    let work = |c: &Choice| c.segments as f64 / c.dt;
-    assert!(work(&choices[0]) < work(&choices[1]), "{choices:?}");
-}
-
-#[test]
-fn a_loose_tolerance_picks_the_seed_scheme_and_a_tight_one_a_second_order_method() {
-    assert_eq!(
-        tolerance::choose(1e-1, 1.0, &THIRTY, |_, _, _| true)
-            .unwrap()
-            .method,
-        MethodKind::Seed
-    );
-    let tight = tolerance::choose(1e-4, 1.0, &THIRTY, |_, _, _| true).unwrap();
-    assert!(
-        tight.method.descriptor().error_model.order > 1.5,
-        "{tight:?}"
-    );
-    // From the horizontal only the chain methods can start.
-    let horizontal = Scene::Release { angle_deg: 0.0 };
-    let from_horizontal = tolerance::choose(1e-1, 1.0, &horizontal, |_, _, _| true).unwrap();
-    assert_ne!(from_horizontal.method, MethodKind::Seed);
 }

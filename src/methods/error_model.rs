@@ -2,11 +2,15 @@
 //! that law to measured errors (used by `rope study` to fit it, and by the convergence tests
 //! to measure an order).
 
-/// Tip error ≈ `constant` · h^`order`.
+/// Tip error ≈ `constant` · h^`order`, and at most `safety` times that on the errors it was
+/// fitted to.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ErrorModel {
     pub constant: f64,
     pub order: f64,
+    /// The largest measured error over the fit's prediction (≥ 1): what the prediction is
+    /// multiplied by to bound every error it was fitted to.
+    pub safety: f64,
 }
 
 impl ErrorModel {
@@ -15,9 +19,14 @@ impl ErrorModel {
         self.constant * (1.0 / segments as f64).powf(self.order)
     }
 
-    /// Fewest segments whose predicted error is at most `tolerance`.
+    /// The predicted error with its safety factor: a bound on the errors it was fitted to.
+    pub fn bound(&self, segments: usize) -> f64 {
+        self.safety * self.predict(segments)
+    }
+
+    /// Fewest segments whose bound is at most `tolerance`.
     pub fn segments_for(&self, tolerance: f64) -> usize {
-        let h = (tolerance / self.constant).powf(1.0 / self.order);
+        let h = (tolerance / (self.safety * self.constant)).powf(1.0 / self.order);
         (1.0 / h).ceil() as usize
     }
 
@@ -39,9 +48,16 @@ impl ErrorModel {
             return None;
         }
         let order = sxy / sxx;
+        let constant = (my - order * mx).exp();
+        // The largest residual above the line, as a factor.
+        let safety = logs
+            .iter()
+            .map(|(x, y)| (y - (constant.ln() + order * x)).exp())
+            .fold(1.0, f64::max);
         Some(ErrorModel {
-            constant: (my - order * mx).exp(),
+            constant,
             order,
+            safety,
         })
     }
 }
@@ -55,11 +71,26 @@ mod tests {
         let law = ErrorModel {
             constant: 0.3,
             order: 2.0,
+            safety: 1.0,
         };
         let fitted = ErrorModel::fit([10, 20, 40].map(|n| (n, law.predict(n)))).unwrap();
         assert!((fitted.order - 2.0).abs() < 1e-12);
         assert!((fitted.constant - 0.3).abs() < 1e-12);
+        assert!((fitted.safety - 1.0).abs() < 1e-9);
         assert_eq!(law.segments_for(law.predict(40)), 40);
+    }
+
+    #[test]
+    fn the_safety_factor_is_the_largest_error_over_the_fit() {
+        // Errors 1, 4, 1 × the law at three N: the fit lies below the middle point.
+        let law = |n: usize| 0.1 / n as f64;
+        let fitted = ErrorModel::fit([(10, law(10)), (20, 4.0 * law(20)), (40, law(40))]).unwrap();
+        let worst = [(10, law(10)), (20, 4.0 * law(20)), (40, law(40))]
+            .iter()
+            .map(|&(n, e)| e / fitted.predict(n))
+            .fold(0.0, f64::max);
+        assert!((fitted.safety - worst).abs() < 1e-9 && fitted.safety > 1.0);
+        assert!(fitted.bound(20) >= 4.0 * law(20) * (1.0 - 1e-12));
     }
 
     #[test]

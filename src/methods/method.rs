@@ -43,6 +43,8 @@ pub trait Method: Send {
     fn energy(&self) -> Energy;
     /// Tension at the support, F_0, from the latest solve.
     fn support_tension(&self) -> f64;
+    /// The segment angles φ_i now, support … tip: the shape, without solving for anything.
+    fn angles(&self) -> &[f64];
     /// The largest joint gap |g_j| after the latest step, for a method whose rods are held
     /// together by constraints it solves for (it must stay at round-off); `None` for a
     /// method whose string cannot come apart by construction.
@@ -146,7 +148,12 @@ pub struct Descriptor {
     pub ns_per_segment_step: f64,
     /// Memory of the method's state per segment, in bytes (what its vectors hold).
     pub bytes_per_segment: usize,
-    /// Tip error at the final time ≈ C h^p, fitted by `rope study` (30° release, t = 1).
+    /// The order of accuracy in h the method is built to have (1 for a first-order scheme):
+    /// what Richardson's extrapolation and the live error estimate divide by 2^p − 1 with.
+    pub order_in_h: u32,
+    /// The largest tip error up to t = 3 ≈ C h^p, with its measured safety factor: fitted by
+    /// `rope study --estimate-check` over the releases at 0°, 30°, 60°, 90° and modes 1 and 2
+    /// (`assets/estimate-check/`).
     pub error_model: ErrorModel,
     /// Chart colours: its coarsest and its finest runs, shades between.
     pub colours: ([u8; 3], [u8; 3]),

@@ -70,9 +70,11 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     // pivots, off-diagonals and gains, two 2-vector scratches, the observer's joint-force
     // solve, the rates.
     bytes_per_segment: 2 * 64 + 24 + 112 + 2 * 16 + 96 + 8,
+    order_in_h: 2,
     error_model: ErrorModel {
-        constant: 0.076,
-        order: 1.96,
+        constant: 0.459,
+        order: 1.00,
+        safety: 1.07,
     },
     colours: ([140, 220, 140], [10, 110, 40]),
     build: |scene, segments, dt| Ok(Box::new(Rattle::new(scene, segments, dt)?)),
@@ -406,6 +408,10 @@ impl Method for Rattle {
 
     fn constraint_residual(&self) -> Option<f64> {
         Some(self.residual)
+    }
+
+    fn angles(&self) -> &[f64] {
+        &self.now.angle
     }
 
     fn observe(&mut self, out: &mut Observation) {

@@ -7,7 +7,9 @@ use crate::error::ConfigError;
 use crate::model::Scene;
 
 /// The methods a run can choose by name.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, clap::ValueEnum, serde::Serialize)]
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Hash, clap::ValueEnum, serde::Serialize, serde::Deserialize,
+)]
 #[serde(rename_all = "lowercase")]
 pub enum MethodKind {
     /// The report's finite-difference scheme: first order in h, explicit, cannot start from

@@ -27,9 +27,11 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     ns_per_segment_step: 10.2,
     // φ at three times, the tension, and the sweep's two scratch vectors.
     bytes_per_segment: 6 * 8,
+    order_in_h: 1,
     error_model: ErrorModel {
-        constant: 1.04,
-        order: 1.00,
+        constant: 2.070,
+        order: 0.82,
+        safety: 1.03,
     },
     colours: ([250, 170, 60], [150, 30, 0]),
     build: |scene, segments, dt| Ok(Box::new(Seed::new(scene, segments, dt)?)),
@@ -239,6 +241,10 @@ impl Method for Seed {
 
     fn support_tension(&self) -> f64 {
         self.tension[0]
+    }
+
+    fn angles(&self) -> &[f64] {
+        &self.phi
     }
 
     fn observe(&mut self, out: &mut Observation) {

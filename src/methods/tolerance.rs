@@ -1,12 +1,10 @@
 //! The rule `rope run --tolerance EPS` uses to model a scene with no more than it needs: the
-//! cheapest method, N and k whose predicted tip error is at most EPS, from each method's
-//! error model and cost in its [`Descriptor`](super::Descriptor).
+//! cheapest method, N and k whose tip error is predicted to stay within EPS, from each
+//! method's error model (with its measured safety factor) and cost in its
+//! [`Descriptor`](super::Descriptor).
 
 use super::registry::MethodKind;
 use crate::model::Scene;
-
-/// How far below the tolerance the predicted error is aimed.
-const SAFETY: f64 = 2.0;
 
 /// Fewest segments the rule chooses: fewer is a pendulum, not a rope.
 const MIN_SEGMENTS: usize = 4;
@@ -25,10 +23,11 @@ pub struct Choice {
     pub predicted_seconds: f64,
 }
 
-/// The cheapest method, N and k whose predicted tip error is at most `tolerance`, among the
-/// methods that can start from `scene` and whose run `fits` (the caller's limits on time and
-/// memory, asked as `fits(method, N, k)`). Each method's N comes from its error model (aiming
-/// at `tolerance / SAFETY`), its k is the method's default for that N.
+/// The cheapest method, N and k whose tip error is predicted to stay within `tolerance`,
+/// among the methods that can start from `scene` and whose run `fits` (the caller's limits on
+/// time and memory, asked as `fits(method, N, k)`). Each method's N comes from its error
+/// model's bound (prediction × measured safety factor), its k is the method's default for
+/// that N.
 pub fn choose(
     tolerance: f64,
     duration: f64,
@@ -38,7 +37,7 @@ pub fn choose(
     startable(scene)
         .map(|method| {
             let model = method.descriptor().error_model;
-            choice(method, model.segments_for(tolerance / SAFETY), duration)
+            choice(method, model.segments_for(tolerance), duration)
         })
         .filter(|c| fits(c.method, c.segments, c.dt))
         .min_by(|a, b| a.predicted_seconds.total_cmp(&b.predicted_seconds))
@@ -98,7 +97,8 @@ fn choice(method: MethodKind, segments: usize, duration: f64) -> Choice {
         method,
         segments,
         dt,
-        predicted_error: d.error_model.predict(segments),
-        predicted_seconds: d.ns_per_segment_step * 1e-9 * segments as f64 * steps,
+        predicted_error: d.error_model.bound(segments),
+        // The run's steps, and its shadow's (N/2 segments, half the steps): a quarter more.
+        predicted_seconds: 1.25 * d.ns_per_segment_step * 1e-9 * segments as f64 * steps,
     }
 }

@@ -5,7 +5,7 @@ use crate::error::ConfigError;
 use std::f64::consts::FRAC_PI_2;
 
 /// An initial state of the string: angles of its segments, at rest.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Scene {
     /// Straight and at rest at `angle_deg` degrees below the horizontal (the report's case).
     Release { angle_deg: f64 },

@@ -6,7 +6,7 @@ use crate::run::simulate::REFERENCE_STEP;
 use rerun::blueprint::components::PanelState;
 use rerun::blueprint::{
     Blueprint, BlueprintPanel, ContainerLike, Horizontal, SelectionPanel, Spatial2DView, Tabs,
-    TextDocumentView, TimePanel, TimeSeriesView, Vertical,
+    TextDocumentView, TextLogView, TimePanel, TimeSeriesView, Vertical,
 };
 
 /// The whole layout: the views get the window (the blueprint and selection panels start
@@ -19,6 +19,7 @@ pub fn blueprint() -> Blueprint {
             Vertical::new([
                 energy_view().into(),
                 deviation_view().into(),
+                error_view().into(),
                 diagnostics().into(),
             ])
             .into(),
@@ -58,6 +59,11 @@ fn deviation_view() -> TimeSeriesView {
     .with_origin(path::DEVIATION)
 }
 
+/// The live error estimate, against the tolerance when there is one.
+fn error_view() -> TimeSeriesView {
+    TimeSeriesView::new("Estimated error (against the run at N/2)").with_origin("error")
+}
+
 /// Support tension, tip speed and acceleration, and the run's parameters, as tabs.
 fn diagnostics() -> Tabs {
     Tabs::new([
@@ -65,6 +71,7 @@ fn diagnostics() -> Tabs {
         series_view("Tip speed", path::TIP_SPEED).into(),
         series_view("Tip acceleration", path::TIP_ACCELERATION).into(),
         series_view("Joint gap (rattle)", path::CONSTRAINT_RESIDUAL).into(),
+        TextLogView::new("Events").with_origin(path::EVENTS).into(),
         TextDocumentView::new("Parameters")
             .with_origin(path::PARAMETERS)
             .into(),

@@ -35,6 +35,11 @@ pub mod path {
     pub const TIP_SPEED: &str = "tip/speed";
     pub const TIP_ACCELERATION: &str = "tip/acceleration";
     pub const CONSTRAINT_RESIDUAL: &str = "constraint/residual";
+    pub const TIP_ESTIMATE: &str = "error/tip_estimate";
+    pub const SHAPE_ESTIMATE: &str = "error/shape_estimate";
+    pub const TOLERANCE: &str = "error/tolerance";
+    pub const TOLERANCE_PASSED: &str = "error/tolerance_passed";
+    pub const EVENTS: &str = "events";
     pub const PARAMETERS: &str = "parameters";
 }
 
@@ -46,7 +51,7 @@ pub const STEP: &str = "step";
 type Series = (&'static str, &'static str, [u8; 3], fn(&Frame) -> f64);
 
 /// Every time series the recording carries, styled once and filled by each batch.
-const SERIES: [Series; 8] = [
+const SERIES: [Series; 10] = [
     (path::KINETIC, "kinetic", [230, 120, 30], |f| {
         f.energy.kinetic()
     }),
@@ -75,6 +80,19 @@ const SERIES: [Series; 8] = [
         "max |g_j|",
         [150, 150, 150],
         |f| f.constraint_residual.unwrap_or(f64::NAN),
+    ),
+    // A run with a shadow has these at the frames it shares with it.
+    (
+        path::TIP_ESTIMATE,
+        "estimated tip error",
+        [200, 40, 160],
+        |f| f.error_estimate.map_or(f64::NAN, |e| e.tip),
+    ),
+    (
+        path::SHAPE_ESTIMATE,
+        "estimated shape error",
+        [110, 110, 200],
+        |f| f.error_estimate.map_or(f64::NAN, |e| e.shape),
     ),
 ];
 
@@ -115,6 +133,8 @@ pub struct RopeLogger {
     /// Where the current run's t = 0 and step 0 lie on the timelines.
     time_offset: f64,
     step_offset: u64,
+    /// The current run's `--tolerance`, drawn beside the estimate.
+    tolerance: Option<f64>,
 }
 
 impl RopeLogger {
@@ -153,6 +173,19 @@ impl RopeLogger {
                 .with_radii([0.008])
                 .with_colors([rerun::Color::from_rgb(230, 150, 0)]),
         )?;
+        rec.log_static(
+            path::TOLERANCE,
+            &rerun::SeriesLines::new()
+                .with_names(["tolerance"])
+                .with_colors([rerun::Color::from_rgb(200, 40, 40)]),
+        )?;
+        rec.log_static(
+            path::TOLERANCE_PASSED,
+            &rerun::SeriesPoints::new()
+                .with_names(["passed the tolerance"])
+                .with_colors([rerun::Color::from_rgb(200, 40, 40)])
+                .with_marker_sizes([6.0]),
+        )?;
         for (entity, name, [r, g, b], _) in SERIES {
             rec.log_static(
                 entity,
@@ -168,6 +201,7 @@ impl RopeLogger {
             series_sent: Instant::now(),
             time_offset: 0.0,
             step_offset: 0,
+            tolerance: None,
         })
     }
 
@@ -234,7 +268,38 @@ impl RopeLogger {
         self.log_rope(frames)?;
         self.log_tip_and_trail(frames)?;
         self.log_tension_profile(frames)?;
+        self.log_tolerance_passed(frames)?;
         self.gather_series(frames)
+    }
+
+    /// The frame at which the estimate passed the tolerance, if it is among `frames`: a
+    /// marker on the error plot and a warning in the events.
+    fn log_tolerance_passed(&self, frames: &[Frame]) -> rerun::RecordingStreamResult<()> {
+        for f in frames.iter().filter(|f| f.tolerance_exceeded) {
+            let tip = f.error_estimate.map_or(f64::NAN, |e| e.tip);
+            let eps = self.tolerance.unwrap_or(f64::NAN);
+            let times = timelines(
+                [self.time_offset + f.time],
+                [(self.step_offset + f.step) as i64],
+            );
+            self.rec.send_columns(
+                path::TOLERANCE_PASSED,
+                times.clone(),
+                rerun::Scalars::new([tip]).columns_of_unit_batches()?,
+            )?;
+            self.rec.send_columns(
+                path::EVENTS,
+                times,
+                rerun::TextLog::update_fields()
+                    .with_text(format!(
+                        "the estimated tip error {tip:.1e} passed the tolerance {eps:.1e} at t = {:.3}",
+                        f.time
+                    ))
+                    .with_level(rerun::TextLogLevel::WARN)
+                    .columns_of_unit_batches()?,
+            )?;
+        }
+        Ok(())
     }
 
     /// The rope: one 2-point strip per segment, coloured by its tension.
@@ -333,14 +398,23 @@ impl RopeLogger {
         }
         let rows = &self.series;
         for (i, (entity, ..)) in SERIES.iter().enumerate() {
-            // A series a method does not have (NaN) is not sent at all.
-            if rows.iter().all(|r| r.2[i].is_nan()) {
+            // A value a frame does not have (NaN) is not sent: a series a method does not
+            // have is not sent at all.
+            let kept: Vec<_> = rows.iter().filter(|r| !r.2[i].is_nan()).collect();
+            if kept.is_empty() {
                 continue;
             }
             self.rec.send_columns(
                 *entity,
+                timelines(kept.iter().map(|r| r.0), kept.iter().map(|r| r.1)),
+                rerun::Scalars::new(kept.iter().map(|r| r.2[i])).columns_of_unit_batches()?,
+            )?;
+        }
+        if let Some(eps) = self.tolerance {
+            self.rec.send_columns(
+                path::TOLERANCE,
                 timelines(rows.iter().map(|r| r.0), rows.iter().map(|r| r.1)),
-                rerun::Scalars::new(rows.iter().map(|r| r.2[i])).columns_of_unit_batches()?,
+                rerun::Scalars::new(rows.iter().map(|_| eps)).columns_of_unit_batches()?,
             )?;
         }
         self.series.clear();
@@ -359,7 +433,10 @@ impl FrameSink for RopeLogger {
     type Error = RecordingError;
 
     fn begin_run(&mut self, plan: &RunPlan) -> Result<(), RecordingError> {
+        // What was gathered belongs to the run before, and to its tolerance.
+        self.send_series()?;
         self.trail.clear();
+        self.tolerance = plan.tolerance;
         self.rec.send_columns(
             path::PARAMETERS,
             timelines([self.time_offset], [self.step_offset as i64]),

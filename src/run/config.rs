@@ -2,6 +2,7 @@
 //! once checked ([`RunPlan`], validated once, every value resolved).
 
 use super::cost::{self, Cost, Limits};
+use super::estimate::{STRIDE, Shadow};
 use crate::error::ConfigError;
 use crate::methods::{Method, MethodKind};
 use crate::model::Scene;
@@ -32,6 +33,12 @@ pub struct RunConfig {
     /// The memory the run may use, and whether a run longer than a day may start. Default:
     /// the machine's available memory, and no.
     pub limits: Limits,
+    /// Carry a shadow at N/2 for the live error estimate (`error/tip_estimate`). Default:
+    /// true (it costs about a fifth of the run: `cargo bench --bench estimate`).
+    pub error_estimate: bool,
+    /// The tip error the run is meant to stay within (`--tolerance`), watched through the
+    /// live estimate. Default: none.
+    pub tolerance: Option<f64>,
 }
 
 impl Default for RunConfig {
@@ -46,6 +53,8 @@ impl Default for RunConfig {
             realtime: None,
             allow_unstable: false,
             limits: Limits::default(),
+            error_estimate: true,
+            tolerance: None,
         }
     }
 }
@@ -60,7 +69,12 @@ pub struct RunPlan {
     pub duration: f64,
     pub log_rate: f64,
     pub realtime: Option<f64>,
-    /// What the run is predicted to cost.
+    /// Whether the run carries a shadow for the live error estimate: asked for, and the run
+    /// fine enough to halve.
+    pub error_estimate: bool,
+    /// The tip error the run is meant to stay within, if one was asked for.
+    pub tolerance: Option<f64>,
+    /// What the run is predicted to cost (with its shadow).
     pub cost: Cost,
 }
 
@@ -88,7 +102,13 @@ impl RunConfig {
         self.scene.validate()?;
         crate::methods::method::validate_segments(d, segments)?;
         crate::methods::method::validate_dt(dt)?;
-        let cost = Cost::of_run(method, segments, dt, self.duration, self.log_rate);
+        let error_estimate = self.error_estimate && Shadow::possible(method, segments);
+        let mut cost = Cost::of_run(method, segments, dt, self.duration, self.log_rate);
+        if error_estimate {
+            let half = Shadow::segments_of(segments);
+            let shadow = Cost::of_run(method, half, dt * STRIDE as f64, self.duration, 0.0);
+            cost = cost.with(&shadow);
+        }
         self.check_cost(&cost, dt)?;
         // Whether the method can start from the scene does not depend on N: building it at
         // its fewest segments says so without allocating the run.
@@ -116,6 +136,8 @@ impl RunConfig {
             duration: self.duration,
             log_rate: self.log_rate,
             realtime: self.realtime,
+            error_estimate,
+            tolerance: self.tolerance,
             cost,
         })
     }
@@ -150,6 +172,14 @@ impl RunPlan {
     /// The method at rest in the plan's scene.
     pub fn build(&self) -> Result<Box<dyn Method>, ConfigError> {
         self.method.build(&self.scene, self.segments, self.dt)
+    }
+
+    /// The run's shadow at N/2, if it carries one.
+    pub fn shadow(&self) -> Result<Option<Shadow>, ConfigError> {
+        if !self.error_estimate {
+            return Ok(None);
+        }
+        Shadow::new(self.method, &self.scene, self.segments, self.dt)
     }
 
     /// The parameters as a Markdown document, so that a recording explains itself.

@@ -61,6 +61,17 @@ impl Cost {
         }
     }
 
+    /// This run and `other` side by side: their CPU times and their state added (`other`'s
+    /// process overhead counted once).
+    pub fn with(&self, other: &Cost) -> Self {
+        Self {
+            seconds: self.seconds + other.seconds,
+            bytes: self
+                .bytes
+                .saturating_add(other.bytes.saturating_sub(BASE_BYTES)),
+        }
+    }
+
     /// The largest segment count whose memory fits in `limit` bytes, for a run like this.
     pub fn segments_within(method: MethodKind, log_rate: f64, limit: u64) -> usize {
         let per_segment = Self::bytes_per_segment(method, log_rate);

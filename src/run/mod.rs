@@ -1,15 +1,19 @@
 //! Running a scene: what a run is asked to do ([`config`]), the pure driver that takes a
-//! method to its final time and makes frames ([`simulate`]), the two-thread pipeline that
-//! hands the frames to a [`sink::FrameSink`] ([`pipeline`]), and what a run reports
-//! ([`summary`], [`progress`]). Nothing here knows where frames end up.
+//! method to its final time and makes frames ([`simulate`]), when its numbers can no longer
+//! be trusted ([`trust`]), the live error estimate from a shadow at half the segments
+//! ([`estimate`]), the two-thread pipeline that hands the frames to a [`sink::FrameSink`]
+//! ([`pipeline`]), and what a run reports ([`summary`], [`progress`]). Nothing here knows
+//! where frames end up.
 
 pub mod config;
 pub mod cost;
+pub mod estimate;
 pub mod pipeline;
 pub mod progress;
 pub mod simulate;
 pub mod sink;
 pub mod summary;
+pub mod trust;
 
 pub use config::{RunConfig, RunPlan};
 pub use cost::{Cost, Limits};

@@ -3,7 +3,7 @@
 //! applies back-pressure, so no frame is dropped.
 
 use super::config::RunPlan;
-use super::simulate::{self, Frame, Options, Outcome};
+use super::simulate::{self, Frame, Options, Outcome, Watch};
 use super::sink::FrameSink;
 use super::summary::{Summary, TipSamples};
 use crate::error::ConfigError;
@@ -24,15 +24,17 @@ const BATCH_WAIT: Duration = Duration::from_millis(50);
 
 /// Runs `plan`, handing its frames to `sink`, until the final time, divergence, or `stop`.
 /// The summary says what was computed; if the sink failed, its `recording_error` says why
-/// (a recording that could not be completed does not undo the run). `progress` hears the
-/// simulated time of each frame, from the simulation thread.
+/// (a recording that could not be completed does not undo the run). `progress` hears each
+/// frame before the sink does, from the simulation thread (its time for a progress bar, its
+/// `tolerance_exceeded` for a notice).
 pub fn run<S: FrameSink>(
     plan: &RunPlan,
     sink: &mut S,
     stop: &AtomicBool,
-    progress: &(dyn Fn(f64) + Sync),
+    progress: &(dyn Fn(&Frame) + Sync),
 ) -> Result<Summary, ConfigError> {
     let mut method = plan.build()?;
+    let mut shadow = plan.shadow()?;
     let started = Instant::now();
     let (tx, rx) = crossbeam_channel::bounded::<Frame>(CHANNEL_FRAMES);
     // Paced runs show each frame as soon as it is made.
@@ -46,7 +48,21 @@ pub fn run<S: FrameSink>(
         // The receiver moves to the sink thread: if the sink fails, it is dropped with it,
         // and the simulation's next send ends the run instead of waiting for ever.
         let sink_thread = scope.spawn(move || deliver(plan, sink, rx, batch_frames));
-        let simulated = simulate_and_send(plan, method.as_mut(), tx, stop, progress, started);
+        let watch = shadow.as_mut().map(|shadow| Watch {
+            shadow,
+            tolerance: plan.tolerance,
+        });
+        let simulated = simulate_and_send(
+            plan,
+            Simulation {
+                method: method.as_mut(),
+                watch,
+            },
+            tx,
+            stop,
+            progress,
+            started,
+        );
         let delivered = sink_thread
             .join()
             .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
@@ -109,15 +125,21 @@ fn deliver<S: FrameSink>(
     sink.flush().map_err(Delivery::Flush)
 }
 
+/// What the simulation thread steps: the method, and its shadow if it has one.
+struct Simulation<'a> {
+    method: &'a mut dyn crate::methods::Method,
+    watch: Option<Watch<'a>>,
+}
+
 /// The simulation thread's work: runs the method, keeps the tip's latest samples, paces to
 /// the wall clock if asked, and sends each frame. A sink that has gone ends the run. Returns
 /// the outcome, the tip samples, and the time spent computing (not waiting).
 fn simulate_and_send(
     plan: &RunPlan,
-    method: &mut dyn crate::methods::Method,
+    simulation: Simulation<'_>,
     tx: Sender<Frame>,
     stop: &AtomicBool,
-    progress: &(dyn Fn(f64) + Sync),
+    progress: &(dyn Fn(&Frame) + Sync),
     started: Instant,
 ) -> (Outcome, TipSamples, Duration) {
     let options = Options {
@@ -126,9 +148,10 @@ fn simulate_and_send(
     };
     let mut samples = TipSamples::default();
     let mut waiting = Duration::ZERO;
-    let outcome = simulate::run(method, &options, Some(stop), |frame| {
+    let Simulation { method, watch } = simulation;
+    let outcome = simulate::run_watched(method, watch, &options, Some(stop), |frame| {
         samples.push(frame.time, frame.tip());
-        progress(frame.time);
+        progress(&frame);
         let wait_started = Instant::now();
         if let Some(speed) = plan.realtime {
             pace(started, frame.time / speed, stop);

@@ -65,6 +65,15 @@ impl Progress {
         }
     }
 
+    /// A line for the person waiting, above the bar (which is redrawn under it).
+    pub fn say(&self, line: &str) {
+        if self.plain {
+            eprintln!("{line}");
+        } else {
+            self.bar.suspend(|| eprintln!("{line}"));
+        }
+    }
+
     /// The run has ended: the bar goes.
     pub fn finish(&self) {
         self.bar.finish_and_clear();

@@ -2,23 +2,14 @@
 //! hands out frames at a fixed rate of simulated time. Pure: what happens to a frame is the
 //! caller's business (the logger streams it; studies and tests read it).
 
+use super::estimate::{ErrorEstimate, STRIDE, Shadow};
+pub use super::trust::{ENERGY_BLOWUP, REFERENCE_STEP, TENSION_BLOWUP, reference_energy};
 use crate::error::Diverged;
 use crate::methods::{Method, Observation, stability_hint};
 use crate::model::geometry::{self, Energy, Point};
 use nalgebra::Vector2;
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicBool, Ordering};
-
-/// The step after which the energy is taken as the reference (the report's criterion: after
-/// the start-up burst, since the initial straight state violates the support condition (9)).
-pub const REFERENCE_STEP: u64 = 10;
-
-/// An energy change this large, in units of m g L, is beyond anything the swing can do (its
-/// whole potential range is 1/2): the run has blown up even if every number is still finite.
-pub const ENERGY_BLOWUP: f64 = 1.0;
-
-/// A support tension this large is beyond anything the swing can do (≲ 5/4 from rest).
-pub const TENSION_BLOWUP: f64 = 1.0e3;
 
 /// What the driver should do.
 #[derive(Clone, Debug)]
@@ -27,6 +18,28 @@ pub struct Options {
     pub duration: f64,
     /// Frames per unit of simulated time; 0 for none.
     pub log_rate: f64,
+}
+
+/// The live error estimate a run carries: its shadow at N/2, and the tolerance the estimate
+/// is held to, if one was asked for.
+pub struct Watch<'a> {
+    pub shadow: &'a mut Shadow,
+    /// EPS of `--tolerance`: the first frame whose tip estimate passes it says so.
+    pub tolerance: Option<f64>,
+}
+
+/// What the live error estimate said over a run.
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
+pub struct EstimateOutcome {
+    /// The largest tip estimate at any frame, and when.
+    pub max_tip: f64,
+    pub max_tip_time: f64,
+    /// The largest shape estimate at any frame.
+    pub max_shape: f64,
+    /// The tip estimate at the last frame that had one.
+    pub final_tip: Option<f64>,
+    /// Why the shadow stopped before the run did, if it did: no estimate after that.
+    pub lost: Option<Diverged>,
 }
 
 /// One logged instant: the rope's shape and everything the viewer and the summary show.
@@ -47,6 +60,11 @@ pub struct Frame {
     /// The largest joint gap, for a method that solves for its joints (see
     /// [`Method::constraint_residual`]).
     pub constraint_residual: Option<f64>,
+    /// Richardson's estimate of this frame's error, for a run with a shadow at an instant the
+    /// shadow shares.
+    pub error_estimate: Option<ErrorEstimate>,
+    /// Set on the one frame at which the tip estimate first passed the tolerance.
+    pub tolerance_exceeded: bool,
 }
 
 impl Frame {
@@ -75,6 +93,10 @@ pub struct Outcome {
     pub support_tension: f64,
     /// The largest joint gap seen, for a method that solves for its joints.
     pub max_constraint_residual: Option<f64>,
+    /// What the live error estimate said, for a run with a shadow.
+    pub estimate: Option<EstimateOutcome>,
+    /// When the tip estimate first passed the tolerance, if it did.
+    pub tolerance_exceeded_at: Option<f64>,
     /// Set when the run stopped because its numbers could no longer be trusted.
     pub diverged: Option<Diverged>,
     /// Set when the caller or the stop flag ended the run early.
@@ -88,9 +110,10 @@ impl Outcome {
     }
 }
 
-/// The step at which frame `j` is taken: the step nearest to time j / rate.
-fn frame_step(j: u64, rate: f64, dt: f64) -> u64 {
-    (j as f64 / (rate * dt)).round() as u64
+/// The step at which frame `j` is taken: the multiple of `stride` steps nearest to time
+/// j / rate (a run with a shadow logs at the steps its shadow shares).
+fn frame_step(j: u64, rate: f64, dt: f64, stride: u64) -> u64 {
+    stride * (j as f64 / (rate * dt * stride as f64)).round() as u64
 }
 
 /// Builds a frame from the method's current state.
@@ -119,20 +142,9 @@ pub fn frame(
         ),
         support_tension: obs.tension.first().copied().unwrap_or(0.0),
         constraint_residual: method.constraint_residual(),
+        error_estimate: None,
+        tolerance_exceeded: false,
     }
-}
-
-/// The energy after [`REFERENCE_STEP`] steps, from a copy of the method (so frames before
-/// that step can already report their deviation). Falls back to the initial energy when the
-/// copy cannot get there.
-pub fn reference_energy(method: &dyn Method) -> f64 {
-    let mut probe = method.box_clone();
-    for _ in 0..REFERENCE_STEP {
-        if probe.step().is_err() {
-            return method.energy().total();
-        }
-    }
-    probe.energy().total()
 }
 
 /// Runs `method` to `options.duration`. Calls `on_frame` at every frame time; a `Break` from
@@ -142,9 +154,22 @@ pub fn run(
     method: &mut dyn Method,
     options: &Options,
     stop: Option<&AtomicBool>,
+    on_frame: impl FnMut(Frame) -> ControlFlow<()>,
+) -> Outcome {
+    run_watched(method, None, options, stop, on_frame)
+}
+
+/// As [`run`], with the live error estimate of `watch` (if any) in every frame the shadow
+/// shares, and the tolerance watched.
+pub fn run_watched(
+    method: &mut dyn Method,
+    mut estimating: Option<Watch<'_>>,
+    options: &Options,
+    stop: Option<&AtomicBool>,
     mut on_frame: impl FnMut(Frame) -> ControlFlow<()>,
 ) -> Outcome {
     let dt = method.dt();
+    let stride = if estimating.is_some() { STRIDE } else { 1 };
     let total_steps = (options.duration / dt).round() as u64;
     let energy_reference = reference_energy(method);
     let energy_scale = if energy_reference.abs() >= 0.01 {
@@ -165,6 +190,8 @@ pub fn run(
         tip: Point::origin(),
         support_tension: method.support_tension(),
         max_constraint_residual: method.constraint_residual(),
+        estimate: estimating.as_ref().map(|_| EstimateOutcome::default()),
+        tolerance_exceeded_at: None,
         diverged: None,
         cancelled: false,
     };
@@ -173,11 +200,15 @@ pub fn run(
     let mut next_frame = 0;
     loop {
         let step = method.steps();
-        if logging && frame_step(next_frame, options.log_rate, dt) <= step {
-            let f = frame(method, &mut obs, energy_reference, energy_scale);
+        let at_frame = frame_step(next_frame, options.log_rate, dt, stride).min(total_steps);
+        if logging && at_frame <= step {
+            let mut f = frame(method, &mut obs, energy_reference, energy_scale);
+            if let Some(watch) = estimating.as_mut() {
+                estimate(watch, &mut f, &mut outcome);
+            }
             outcome.frames += 1;
             // Frames closer together than a step (log rate above 1/k) share this one.
-            while frame_step(next_frame, options.log_rate, dt) <= step {
+            while frame_step(next_frame, options.log_rate, dt, stride) <= step {
                 next_frame += 1;
             }
             if on_frame(f).is_break() {
@@ -213,6 +244,32 @@ pub fn run(
         outcome.support_tension = obs.tension.first().copied().unwrap_or(0.0);
     }
     outcome
+}
+
+/// Puts the live error estimate into frame `f`, and what it says into `outcome`.
+fn estimate(watch: &mut Watch<'_>, f: &mut Frame, outcome: &mut Outcome) {
+    let Some(said) = outcome.estimate.as_mut() else {
+        return;
+    };
+    f.error_estimate = watch.shadow.estimate(f.step, &f.nodes);
+    match f.error_estimate {
+        Some(e) => {
+            if e.tip > said.max_tip {
+                said.max_tip = e.tip;
+                said.max_tip_time = f.time;
+            }
+            said.max_shape = said.max_shape.max(e.shape);
+            said.final_tip = Some(e.tip);
+            if let Some(eps) = watch.tolerance
+                && e.tip > eps
+                && outcome.tolerance_exceeded_at.is_none()
+            {
+                outcome.tolerance_exceeded_at = Some(f.time);
+                f.tolerance_exceeded = true;
+            }
+        }
+        None => said.lost = said.lost.take().or_else(|| watch.shadow.lost().cloned()),
+    }
 }
 
 /// Runs `method` to `duration` with no frames and no way to stop it early: the bare

@@ -2,7 +2,8 @@
 //! people.
 
 use super::config::RunPlan;
-use super::simulate::{Outcome, REFERENCE_STEP};
+use super::estimate::Shadow;
+use super::simulate::{EstimateOutcome, Outcome, REFERENCE_STEP};
 use crate::error::Diverged;
 use crate::methods::MethodKind;
 use crate::model::analysis;
@@ -80,6 +81,16 @@ pub struct Summary {
     /// The largest joint gap |g_j| seen, for a method that solves for its joints (`rattle`):
     /// how far the rods came apart, at round-off when all is well.
     pub constraint_residual: Option<f64>,
+    /// The live error estimate (Richardson against the shadow at N/2): its largest and final
+    /// tip values, its largest shape value; absent for a run without a shadow.
+    pub error_estimate: Option<EstimateOutcome>,
+    /// The tip error `--tolerance` asked for.
+    pub tolerance: Option<f64>,
+    /// Whether the live tip estimate stayed within the tolerance for the whole run; absent
+    /// without a tolerance, or where the estimate was lost before the end (`error_estimate.lost`).
+    pub tolerance_met: Option<bool>,
+    /// When the tip estimate first passed the tolerance.
+    pub tolerance_exceeded_at: Option<f64>,
     /// `[t, x, y]` of the tip at every logged frame.
     pub tip_samples: Vec<[f64; 3]>,
     /// Oscillation period from the tip's zero crossings, for the `mode` scene.
@@ -140,6 +151,10 @@ impl Summary {
             },
             support_tension: outcome.support_tension,
             constraint_residual: outcome.max_constraint_residual,
+            error_estimate: outcome.estimate.clone(),
+            tolerance: plan.tolerance,
+            tolerance_met: tolerance_met(plan, outcome),
+            tolerance_exceeded_at: outcome.tolerance_exceeded_at,
             tip_samples: samples,
             period,
             recording_error,
@@ -176,6 +191,34 @@ impl Summary {
         if let Some(residual) = self.constraint_residual {
             text += &format!("  joints closed to {residual:.1e} at worst (largest |g_j|)\n");
         }
+        if let Some(e) = &self.error_estimate {
+            text += &format!(
+                "  estimated error (against the run at N = {}): tip {:.1e} at worst (t = {:.3}), {} at the end; shape {:.1e} at worst\n",
+                Shadow::segments_of(self.segments),
+                e.max_tip,
+                e.max_tip_time,
+                e.final_tip
+                    .map_or("none".to_owned(), |tip| format!("{tip:.1e}")),
+                e.max_shape
+            );
+            if let Some(lost) = &e.lost {
+                text += &format!(
+                    "  the estimate stopped at t = {:.3}: {}\n",
+                    lost.time, lost.reason
+                );
+            }
+        }
+        if let Some(eps) = self.tolerance {
+            text += &match (self.tolerance_met, self.tolerance_exceeded_at) {
+                (_, Some(t)) => format!(
+                    "  tolerance {eps:.1e}: NOT met, the estimated tip error passed it at t = {t:.3}\n"
+                ),
+                (Some(true), None) => {
+                    format!("  tolerance {eps:.1e}: met (by the estimate, at every frame)\n")
+                }
+                _ => format!("  tolerance {eps:.1e}: unknown, the estimate was lost\n"),
+            };
+        }
         if let Some(period) = self.period {
             text += &format!(
                 "  period {period:.4} (angular frequency {:.4})\n",
@@ -187,5 +230,18 @@ impl Summary {
             self.wall_seconds, self.ns_per_segment_step, self.frames_logged
         );
         text
+    }
+}
+
+/// Whether the tolerance held by the estimate: false once it passed, true if it never did and
+/// the estimate lasted to the end, unknown otherwise.
+fn tolerance_met(plan: &RunPlan, outcome: &Outcome) -> Option<bool> {
+    plan.tolerance?;
+    if outcome.tolerance_exceeded_at.is_some() {
+        return Some(false);
+    }
+    match &outcome.estimate {
+        Some(e) if e.lost.is_none() && e.final_tip.is_some() => Some(true),
+        _ => None,
     }
 }

@@ -13,7 +13,7 @@ use rayon::prelude::*;
 pub const SHAPE_POINTS: usize = 11;
 
 /// What to run.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Spec {
     pub scene: Scene,
     pub duration: f64,
@@ -165,8 +165,20 @@ pub fn run_cell(scene: &Scene, duration: f64, method: MethodKind, segments: usiz
 
 /// Runs every cell in parallel; `progress` is called after each.
 pub fn run_grid(spec: &Spec, progress: impl Fn() + Sync) -> Vec<Row> {
-    let mut rows: Vec<Row> = spec
-        .cells()
+    run_cells(spec, spec.cells(), progress)
+}
+
+/// Runs `cells` of `spec`'s grid in parallel, the most expensive first; `progress` is called
+/// after each. The rows come sorted by method, N and k.
+pub fn run_cells(
+    spec: &Spec,
+    mut cells: Vec<(MethodKind, usize, f64)>,
+    progress: impl Fn() + Sync,
+) -> Vec<Row> {
+    let cost =
+        |&(m, n, dt): &(MethodKind, usize, f64)| m.descriptor().ns_per_segment_step * n as f64 / dt;
+    cells.sort_by(|a, b| cost(b).total_cmp(&cost(a)));
+    let mut rows: Vec<Row> = cells
         .into_par_iter()
         .with_max_len(1) // one run per task, so that stealing balances runs of unequal cost
         .map(|(m, n, dt)| {
@@ -175,12 +187,17 @@ pub fn run_grid(spec: &Spec, progress: impl Fn() + Sync) -> Vec<Row> {
             row
         })
         .collect();
+    sort_rows(&mut rows);
+    rows
+}
+
+/// The rows' order in `study.csv`: by method name, N, then k.
+pub fn sort_rows(rows: &mut [Row]) {
     rows.sort_by(|a, b| {
         (a.method.name(), a.segments)
             .cmp(&(b.method.name(), b.segments))
             .then(a.dt.total_cmp(&b.dt))
     });
-    rows
 }
 
 /// Fits C h^p to the tip errors of the `ok` runs of `method` with N ≥ `min_segments`, taking

@@ -5,12 +5,18 @@
 //! * [`grid`]: the cells, one run each, in parallel; [`reference`]: the converged solution;
 //! * [`findings`]: convergence orders, stability limits, the cheapest accurate runs;
 //! * [`report`]: `study.csv`; [`charts`]: SVG and PNG; [`record`]: the same into Rerun;
+//! * [`shard`]: the grid split over processes or machines (`--shard`, `--reference-only`,
+//!   `--merge`);
 //! * [`long_run`]: `--long-run T`, the energy error of each method over a long swing;
 //! * [`blow_up`]: `--blow-up T`, when the report's scheme blows up and what grows first;
-//! * [`long_charts`]: the charts of those two.
+//! * [`long_charts`]: the charts of those two;
+//! * [`estimate_check`]: `--estimate-check`, the live error estimate against the truth, and
+//!   the error models over all the scenes; [`check_chart`]: its chart.
 
 pub mod blow_up;
 pub mod charts;
+pub mod check_chart;
+pub mod estimate_check;
 pub mod findings;
 pub mod grid;
 pub mod long_charts;
@@ -18,6 +24,7 @@ pub mod long_run;
 pub mod record;
 pub mod reference;
 pub mod report;
+pub mod shard;
 
 pub use grid::{Row, Spec, Status, fit, run_cell, run_grid, shape};
 pub use reference::{Reference, measure_errors, reference};
@@ -40,10 +47,22 @@ pub struct Outcome {
 /// the CPU time of every run added up, and the memory of as many of the largest runs as
 /// there are `threads`.
 pub fn cost(spec: &Spec, reference_segments: usize, threads: usize) -> Cost {
-    let costs: Vec<Cost> = spec
-        .cells()
-        .into_iter()
-        .chain(reference::reference_runs(reference_segments))
+    cost_of(spec, &spec.cells(), Some(reference_segments), threads)
+}
+
+/// As [`cost`], for some `cells` of the grid, and the reference at `reference_segments` if
+/// it is to be computed (not read from a file).
+pub fn cost_of(
+    spec: &Spec,
+    cells: &[(MethodKind, usize, f64)],
+    reference_segments: Option<usize>,
+    threads: usize,
+) -> Cost {
+    let reference = reference_segments.map(reference::reference_runs);
+    let costs: Vec<Cost> = cells
+        .iter()
+        .copied()
+        .chain(reference.into_iter().flatten())
         .map(|(m, n, dt)| Cost::of_run(m, n, dt, spec.duration, 0.0))
         .collect();
     let largest = costs.iter().map(|c| c.bytes).max().unwrap_or(0);
@@ -63,17 +82,103 @@ pub fn execute(
     command: &str,
     progress: impl Fn() + Sync,
 ) -> anyhow::Result<Outcome> {
-    use anyhow::Context as _;
-    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    create_dir(out)?;
     let reference = reference(&spec.scene, spec.duration, reference_segments)?;
+    execute_with(spec, reference, out, command, progress)
+}
+
+/// As [`execute`], against a reference already computed (`--reference FILE`).
+pub fn execute_with(
+    spec: &Spec,
+    reference: Reference,
+    out: &Path,
+    command: &str,
+    progress: impl Fn() + Sync,
+) -> anyhow::Result<Outcome> {
+    create_dir(out)?;
     let mut rows = run_grid(spec, progress);
     measure_errors(&mut rows, &reference);
+    finish(spec, reference, rows, out, command)
+}
+
+/// Computes the reference alone and writes it to `out/reference.json`, for shards to share
+/// (`--reference FILE`). Returns the file's path.
+pub fn execute_reference_only(
+    spec: &Spec,
+    reference_segments: usize,
+    out: &Path,
+) -> anyhow::Result<std::path::PathBuf> {
+    create_dir(out)?;
+    let r = reference(&spec.scene, spec.duration, reference_segments)?;
+    let file = shard::ReferenceFile::new(spec.scene, spec.duration, reference_segments, &r);
+    let path = out.join(shard::REFERENCE);
+    write(&path, &serde_json::to_string_pretty(&file)?)?;
+    Ok(path)
+}
+
+/// Runs one shard's cells of the grid, measured against `reference` (computed here when
+/// none is given), and writes the partial `study.csv` and its manifest `shard.json` into
+/// `out`. Returns the shard's rows.
+pub fn execute_shard(
+    spec: &Spec,
+    shard: shard::Shard,
+    reference: Option<shard::ReferenceFile>,
+    reference_segments: usize,
+    out: &Path,
+    progress: impl Fn() + Sync,
+) -> anyhow::Result<Vec<Row>> {
+    use anyhow::Context as _;
+    create_dir(out)?;
+    let reference = match reference {
+        Some(file) => file,
+        None => {
+            let r = reference::reference(&spec.scene, spec.duration, reference_segments)?;
+            shard::ReferenceFile::new(spec.scene, spec.duration, reference_segments, &r)
+        }
+    };
+    let mut rows = grid::run_cells(spec, shard.cells(spec), progress);
+    measure_errors(&mut rows, &reference.reference());
+    let csv = out.join("study.csv");
+    report::write_csv(&rows, &csv).with_context(|| format!("writing {}", csv.display()))?;
+    let manifest = shard::Manifest {
+        shard,
+        spec: spec.clone(),
+        reference,
+    };
+    write(
+        &out.join(shard::MANIFEST),
+        &serde_json::to_string_pretty(&manifest)?,
+    )?;
+    Ok(rows)
+}
+
+/// Merges the shards in `dirs` (see [`shard::merge`]) and writes the whole study from them
+/// into `out`, as [`execute`] would have.
+pub fn execute_merge(
+    dirs: &[std::path::PathBuf],
+    out: &Path,
+    command: &str,
+) -> anyhow::Result<Outcome> {
+    let (spec, reference, rows) = shard::merge(dirs)?;
+    create_dir(out)?;
+    finish(&spec, reference.reference(), rows, out, command)
+}
+
+/// What every whole study ends with: `study.csv`, the findings and the charts from its
+/// measured rows.
+fn finish(
+    spec: &Spec,
+    reference: Reference,
+    rows: Vec<Row>,
+    out: &Path,
+    command: &str,
+) -> anyhow::Result<Outcome> {
+    use anyhow::Context as _;
     let csv = out.join("study.csv");
     report::write_csv(&rows, &csv).with_context(|| format!("writing {}", csv.display()))?;
     let findings = findings::Findings::from_rows(&rows);
     let markdown = findings.markdown(&reference, command);
-    let md = out.join("findings.md");
-    std::fs::write(&md, &markdown).with_context(|| format!("writing {}", md.display()))?;
+    write(&out.join("findings.md"), &markdown)?;
     let startup: Vec<_> = spec
         .methods
         .iter()
@@ -96,6 +201,18 @@ pub fn execute(
         markdown,
         startup,
     })
+}
+
+/// Creates the output directory `out`.
+fn create_dir(out: &Path) -> anyhow::Result<()> {
+    use anyhow::Context as _;
+    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))
+}
+
+/// Writes `text` to `path`.
+fn write(path: &Path, text: &str) -> anyhow::Result<()> {
+    use anyhow::Context as _;
+    std::fs::write(path, text).with_context(|| format!("writing {}", path.display()))
 }
 
 /// Runs every method of `methods` from every scene of `scenes` for `duration` time units (in
@@ -169,5 +286,28 @@ pub fn execute_blow_up(
     std::fs::write(&md, &markdown).with_context(|| format!("writing {}", md.display()))?;
     charts::register_font()?;
     long_charts::write_blow_up(out, &lifetimes, saw.as_ref())?;
+    Ok(markdown)
+}
+
+/// The live error estimate of each cell of `spec` against the truth; writes
+/// `estimate_check.md`, `estimate_check.csv` and the chart `estimate_check.png` into `out`.
+/// Returns the Markdown. `tick` is called once per reference and once per cell.
+pub fn execute_estimate_check(
+    spec: &estimate_check::CheckSpec,
+    out: &Path,
+    command: &str,
+    tick: impl Fn() + Sync,
+) -> anyhow::Result<String> {
+    use anyhow::Context as _;
+    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    let cells = estimate_check::check(spec, tick)?;
+    let csv = out.join("estimate_check.csv");
+    estimate_check::write_csv(&cells, &csv)
+        .with_context(|| format!("writing {}", csv.display()))?;
+    let markdown = estimate_check::markdown(spec, &cells, command);
+    let md = out.join("estimate_check.md");
+    std::fs::write(&md, &markdown).with_context(|| format!("writing {}", md.display()))?;
+    charts::register_font()?;
+    check_chart::write(out, &cells)?;
     Ok(markdown)
 }

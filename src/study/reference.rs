@@ -61,7 +61,7 @@ pub fn reference(scene: &Scene, duration: f64, finest: usize) -> anyhow::Result<
         .try_into()
         .map_err(|_| anyhow::anyhow!("three reference runs expected"))?;
     // Richardson in h: x + (x − x_half) / (2^p − 1), p the method's order.
-    let order = method.descriptor().error_model.order.round();
+    let order = f64::from(method.descriptor().order_in_h);
     let extrapolate = |f: Point, c: Point| f + (f - c) / (2f64.powf(order) - 1.0);
     let tip = extrapolate(tip_f, tip_c);
     let shape: Vec<Point> = shape_f

@@ -1,0 +1,180 @@
+//! The live error estimate: a shadow of the run at half the segments and twice the time step,
+//! stepped alongside it, and Richardson's estimate of the main run's error from the two.
+//!
+//! With the error ≈ C h^p, the run at N has error e and its shadow at M = N/2 has about
+//! r^p e (r = N/M), so e ≈ |x_N − x_M| / (r^p − 1). The shadow doubles the step too, so a
+//! method whose error in k has the same order as in h (the report's scheme, `rattle`) scales
+//! as a whole; for the RK4 chain the error in k is negligible.
+
+use super::trust::{ENERGY_BLOWUP, reference_energy};
+use crate::error::{ConfigError, Diverged};
+use crate::methods::{Method, MethodKind};
+use crate::model::Scene;
+use crate::model::geometry::{self, Point};
+
+/// Main steps per shadow step: the shadow's step is this many times the run's.
+pub const STRIDE: u64 = 2;
+
+/// Richardson's estimate of the run's error at one instant, in string lengths.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct ErrorEstimate {
+    /// Of the tip's position.
+    pub tip: f64,
+    /// Of the shape: the largest distance between the two strings at the shadow's nodes.
+    pub shape: f64,
+}
+
+/// The run at half its segments, kept in step with it.
+pub struct Shadow {
+    method: Box<dyn Method>,
+    /// 1 / (r^p − 1), r = N / M, p the method's order in h.
+    richardson: f64,
+    /// The shadow's energy after the start-up, to see it blow up.
+    energy_reference: f64,
+    /// Why the shadow stopped, if it did: the estimates end there.
+    lost: Option<Diverged>,
+    nodes: Vec<Point>,
+}
+
+impl Shadow {
+    /// The shadow's segment count for a run of `segments`.
+    pub fn segments_of(segments: usize) -> usize {
+        segments / 2
+    }
+
+    /// Whether a run of `method` at `segments` can have a shadow: half its segments must be
+    /// enough for the method.
+    pub fn possible(method: MethodKind, segments: usize) -> bool {
+        Self::segments_of(segments) >= method.descriptor().min_segments
+    }
+
+    /// The shadow of a run of `method` in `scene` at `segments` and step `dt`; `None` where
+    /// the run is too coarse to have one ([`Shadow::possible`]).
+    pub fn new(
+        method: MethodKind,
+        scene: &Scene,
+        segments: usize,
+        dt: f64,
+    ) -> Result<Option<Self>, ConfigError> {
+        if !Self::possible(method, segments) {
+            return Ok(None);
+        }
+        let half = Self::segments_of(segments);
+        let shadow = method.build(scene, half, dt * STRIDE as f64)?;
+        let ratio = segments as f64 / half as f64;
+        let order = method.descriptor().order_in_h;
+        Ok(Some(Self {
+            energy_reference: reference_energy(shadow.as_ref()),
+            method: shadow,
+            richardson: 1.0 / (ratio.powi(order as i32) - 1.0),
+            lost: None,
+            nodes: Vec::with_capacity(half + 1),
+        }))
+    }
+
+    /// Why the shadow stopped, if it has: no estimate comes after.
+    pub fn lost(&self) -> Option<&Diverged> {
+        self.lost.as_ref()
+    }
+
+    /// Brings the shadow to the run's step `step` and estimates the error of the run's
+    /// `nodes` (support … tip). `None` if `step` is not a multiple of [`STRIDE`] (the two are
+    /// not at the same instant) or the shadow has stopped.
+    pub fn estimate(&mut self, step: u64, nodes: &[Point]) -> Option<ErrorEstimate> {
+        if self.lost.is_some() || !step.is_multiple_of(STRIDE) {
+            return None;
+        }
+        let target = step / STRIDE;
+        while self.method.steps() < target {
+            if let Err(d) = self.method.step() {
+                self.lost = Some(d);
+                return None;
+            }
+        }
+        let energy = self.method.energy().total();
+        if !energy.is_finite() || (energy - self.energy_reference).abs() > ENERGY_BLOWUP {
+            self.lost = Some(Diverged {
+                step: self.method.steps(),
+                time: self.method.time(),
+                reason: format!(
+                    "the energy of the shadow at N = {} grew without bound: E = {energy:.3e}",
+                    self.method.segments()
+                ),
+            });
+            return None;
+        }
+        geometry::nodes(self.method.angles(), &mut self.nodes);
+        let tip = nodes.last().copied().unwrap_or_else(Point::origin);
+        let shadow_tip = self.nodes.last().copied().unwrap_or_else(Point::origin);
+        let half = self.nodes.len().saturating_sub(1).max(1) as f64;
+        let shape = self
+            .nodes
+            .iter()
+            .enumerate()
+            .map(|(j, p)| (at_arc_length(nodes, j as f64 / half) - p).norm())
+            .fold(0.0, f64::max);
+        Some(ErrorEstimate {
+            tip: (tip - shadow_tip).norm() * self.richardson,
+            shape: shape * self.richardson,
+        })
+    }
+}
+
+/// The point at arc length `s` (0 at the support, 1 at the tip) along equal segments
+/// between `nodes`.
+fn at_arc_length(nodes: &[Point], s: f64) -> Point {
+    let segments = nodes.len().saturating_sub(1);
+    if segments == 0 {
+        return nodes.first().copied().unwrap_or_else(Point::origin);
+    }
+    let x = s * segments as f64;
+    let i = (x.floor() as usize).min(segments - 1);
+    let frac = x - i as f64;
+    nodes[i] + frac * (nodes[i + 1] - nodes[i])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_point_along_the_string_is_found_by_arc_length() {
+        let nodes = [
+            Point::new(0.0, 0.0),
+            Point::new(0.5, 0.0),
+            Point::new(0.5, 0.5),
+        ];
+        assert_eq!(at_arc_length(&nodes, 0.0), nodes[0]);
+        assert_eq!(at_arc_length(&nodes, 0.25), Point::new(0.25, 0.0));
+        assert_eq!(at_arc_length(&nodes, 0.75), Point::new(0.5, 0.25));
+        assert_eq!(at_arc_length(&nodes, 1.0), nodes[2]);
+    }
+
+    #[test]
+    fn a_run_too_coarse_to_halve_has_no_shadow() {
+        let scene = Scene::Release { angle_deg: 30.0 };
+        assert!(
+            Shadow::new(MethodKind::Seed, &scene, 7, 1e-3)
+                .unwrap()
+                .is_none()
+        );
+        assert!(
+            Shadow::new(MethodKind::Seed, &scene, 8, 1e-3)
+                .unwrap()
+                .is_some()
+        );
+    }
+
+    #[test]
+    fn at_the_start_the_run_and_its_shadow_agree() {
+        let scene = Scene::Release { angle_deg: 30.0 };
+        let mut shadow = Shadow::new(MethodKind::Chain, &scene, 10, 1e-3)
+            .unwrap()
+            .unwrap();
+        let mut nodes = Vec::new();
+        geometry::nodes(&scene.initial_angles(10), &mut nodes);
+        let e = shadow.estimate(0, &nodes).unwrap();
+        assert!(e.tip < 1e-15 && e.shape < 1e-15);
+        assert!(shadow.estimate(1, &nodes).is_none());
+    }
+}
