@@ -150,12 +150,12 @@ pub struct StudyArgs {
     /// Run only shard I of N of the grid (the cells whose place in the grid's fixed order is
     /// I modulo N) and write a partial study.csv and its manifest shard.json into --out, for
     /// `--merge` to put together. Shards may run anywhere: in parallel here, or as a job array.
-    #[arg(long, value_name = "I/N", conflicts_with_all = ["long_run", "blow_up", "estimate_check", "merge", "reference_only"])]
+    #[arg(long, value_name = "I/N", conflicts_with_all = ["long_run", "blow_up", "estimate_check", "merge", "reference_only", "save"])]
     pub shard: Option<crate::study::shard::Shard>,
 
     /// Compute only the reference and write it to --out/reference.json, for every shard to
     /// read with --reference instead of computing it again.
-    #[arg(long, conflicts_with_all = ["long_run", "blow_up", "estimate_check", "merge"])]
+    #[arg(long, conflicts_with_all = ["long_run", "blow_up", "estimate_check", "merge", "save"])]
     pub reference_only: bool,
 
     /// The reference to measure against, as written by --reference-only (of the same scene,

@@ -188,3 +188,54 @@ fn the_slurm_script_parses_and_its_array_tasks_run_the_shards() {
     assert_eq!(rows.len(), MethodKind::ALL.len() * 2);
     let _ = std::fs::remove_dir_all(&root);
 }
+
+#[test]
+fn a_shard_out_of_range_or_a_reference_of_another_study_is_refused_naming_the_flag() {
+    let rope = env!("CARGO_BIN_EXE_rope");
+    let out = Command::new(rope)
+        .args(["study", "--shard", "8/8", "--out", "/tmp"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("--shard") && stderr.contains("0 ≤ I < N"),
+        "{stderr}"
+    );
+
+    let root = scratch("other-reference");
+    let made = Command::new(rope)
+        .args(["study", "--duration", "0.5", "--segments", "10,20"])
+        .args(["--reference-only", "--out", root.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(made.status.success(), "{made:?}");
+    let file = root.join(shard::REFERENCE);
+    let other = Command::new(rope)
+        .args([
+            "study",
+            "--duration",
+            "1",
+            "--segments",
+            "10,20",
+            "--shard",
+            "0/2",
+        ])
+        .args([
+            "--reference",
+            file.to_str().unwrap(),
+            "--out",
+            root.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(other.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&other.stderr);
+    assert!(
+        stderr.contains("reference =")
+            && stderr.contains("to t = 0.5")
+            && stderr.contains("to t = 1"),
+        "{stderr}"
+    );
+    let _ = std::fs::remove_dir_all(&root);
+}
