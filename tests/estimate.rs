@@ -173,3 +173,30 @@ fn the_recording_and_the_summary_carry_the_estimate_unless_it_is_turned_off() {
         }
     }
 }
+
+#[test]
+fn a_frame_at_every_step_keeps_every_frame_and_estimates_at_the_steps_the_shadow_shares() {
+    let plan = RunConfig {
+        method: MethodKind::Chain,
+        segments: 40,
+        dt: Some(1e-3),
+        log_rate: 1000.0,
+        duration: 0.1,
+        ..RunConfig::default()
+    }
+    .validate()
+    .unwrap();
+    let (mut tx, rx) = crossbeam_channel::unbounded();
+    pipeline::run(&plan, &mut tx, &AtomicBool::new(false), &|_| {}).unwrap();
+    drop(tx);
+    let frames: Vec<_> = rx.iter().collect();
+    assert_eq!(frames.len(), 101);
+    for f in &frames {
+        assert_eq!(
+            f.error_estimate.is_some(),
+            f.step % 2 == 0,
+            "step {}",
+            f.step
+        );
+    }
+}

@@ -29,8 +29,8 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     bytes_per_segment: 6 * 8,
     order_in_h: 1,
     error_model: ErrorModel {
-        constant: 2.070,
-        order: 0.82,
+        constant: 1.985,
+        order: 0.81,
         safety: 1.03,
     },
     colours: ([250, 170, 60], [150, 30, 0]),

@@ -169,7 +169,11 @@ pub fn run_watched(
     mut on_frame: impl FnMut(Frame) -> ControlFlow<()>,
 ) -> Outcome {
     let dt = method.dt();
-    let stride = if estimating.is_some() { STRIDE } else { 1 };
+    // With a shadow, frames fall on the steps it shares, unless that would merge frames (a
+    // log rate above 1/(2k)): then every frame is taken, and those at odd steps go without an
+    // estimate.
+    let shared = estimating.is_some() && options.log_rate * dt * STRIDE as f64 <= 1.0;
+    let stride = if shared { STRIDE } else { 1 };
     let total_steps = (options.duration / dt).round() as u64;
     let energy_reference = reference_energy(method);
     let energy_scale = if energy_reference.abs() >= 0.01 {
