@@ -186,20 +186,16 @@ pub fn reference_file(
     let text = std::fs::read_to_string(path).map_err(|e| unreadable(e.to_string()))?;
     let file: crate::study::shard::ReferenceFile =
         serde_json::from_str(&text).map_err(|e| unreadable(format!("not a reference: {e}")))?;
-    let of = |scene: &Scene, duration: f64, finest: usize| {
-        format!("{scene} to t = {duration} at N = {finest}")
-    };
-    let ours = of(
-        &plan.spec.scene,
-        plan.spec.duration,
-        plan.reference_segments,
-    );
-    let theirs = of(&file.scene, file.duration, file.finest);
+    let ours = (plan.spec.scene, plan.spec.duration, plan.reference_segments);
+    let theirs = (file.scene, file.duration, file.finest);
     if ours != theirs {
+        let of = |(scene, duration, finest): (Scene, f64, usize)| {
+            format!("{scene} to t = {duration} at N = {finest}")
+        };
         return Err(ConfigError::ReferenceOfAnotherStudy {
             path: shown,
-            theirs,
-            ours,
+            theirs: of(theirs),
+            ours: of(ours),
         });
     }
     Ok(file)
@@ -539,8 +535,12 @@ impl RunArgs {
         }
         let duration = self.duration.max(0.0);
         let memory = self.limits.limits().memory(); // read once: the rule asks many times
+        // The chosen run carries the live estimate (--tolerance needs it): its shadow counts.
+        let cost_of = |method, segments, dt| {
+            Cost::of_estimated_run(method, segments, dt, duration, self.log_rate, true)
+        };
         let fits = |method, segments, dt| {
-            let cost = Cost::of_run(method, segments, dt, duration, self.log_rate);
+            let cost = cost_of(method, segments, dt);
             cost.bytes <= memory && cost.seconds <= tolerance::MAX_SECONDS
         };
         if let Some(choice) = tolerance::choose(eps, duration, scene, fits) {
@@ -548,7 +548,7 @@ impl RunArgs {
         }
         let best = tolerance::tightest(duration, scene, fits)
             .ok_or(ConfigError::ToleranceNoMethod(eps))?;
-        let cost = Cost::of_run(best.method, best.segments, best.dt, duration, self.log_rate);
+        let cost = cost_of(best.method, best.segments, best.dt);
         Err(ConfigError::ToleranceUnreachable {
             tolerance: eps,
             limit: format!(

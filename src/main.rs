@@ -118,13 +118,13 @@ fn announce(args: &RunArgs, plans: &[Planned]) {
             String::new()
         };
         eprintln!(
-            "rope: tolerance {:e}{scene}: chose the {} method, N = {}, k = {:e}; predicted tip error at most {:.1e}, predicted cost {:.2e} CPU s (error model fitted to t = 3 over six scenes by `rope study --estimate-check`; the live estimate will say if it holds)",
+            "rope: tolerance {:e}{scene}: chose the {} method, N = {}, k = {:e}; predicted tip error at most {:.1e}, predicted cost {:.2e} CPU s with its frames and the estimate's shadow (error model fitted to t = 3 over six scenes by `rope study --estimate-check`; the live estimate will say if it holds)",
             args.tolerance.unwrap_or_default(),
             choice.method,
             choice.segments,
             choice.dt,
             choice.predicted_error,
-            choice.predicted_seconds
+            plan.cost.seconds
         );
     }
     if let (None, None, Some(Planned { plan, .. })) = (args.tolerance, args.dt, plans.first()) {
@@ -334,7 +334,7 @@ fn study(args: &StudyArgs) -> anyhow::Result<ExitCode> {
         if reference.is_some() { " (read)" } else { "" }
     );
     let counter = Counter::new(cells, "rope study", "runs");
-    let command = std::env::args().collect::<Vec<_>>().join(" ");
+    let command = command_line();
     if let Some(shard) = args.shard {
         rope::study::execute_shard(
             spec,
@@ -398,7 +398,7 @@ fn long_runs(args: &StudyArgs, duration: f64) -> anyhow::Result<ExitCode> {
         "rope study",
         "time units",
     );
-    let command = std::env::args().collect::<Vec<_>>().join(" ");
+    let command = command_line();
     let markdown = rope::study::execute_long_runs(
         &args.methods,
         &plan.scenes,
@@ -416,12 +416,17 @@ fn long_runs(args: &StudyArgs, duration: f64) -> anyhow::Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
+/// The command line as typed, for the findings to cite.
+fn command_line() -> String {
+    std::env::args().collect::<Vec<_>>().join(" ")
+}
+
 /// `rope study --merge DIR…`: the shards of a study put together.
 fn merge(args: &StudyArgs, dirs: &[std::path::PathBuf]) -> anyhow::Result<ExitCode> {
     if let Err(err) = writable_dir("out", &args.out) {
         return Ok(bad_input(&err));
     }
-    let command = std::env::args().collect::<Vec<_>>().join(" ");
+    let command = command_line();
     let outcome = match rope::study::execute_merge(dirs, &args.out, &command) {
         Ok(outcome) => outcome,
         Err(err) => match err.downcast_ref::<rope::study::shard::MergeError>() {
@@ -461,7 +466,7 @@ fn estimate_check(args: &StudyArgs) -> anyhow::Result<ExitCode> {
         "rope study",
         "references and runs",
     );
-    let command = std::env::args().collect::<Vec<_>>().join(" ");
+    let command = command_line();
     let markdown =
         rope::study::execute_estimate_check(&spec, &args.out, &command, || counter.inc())?;
     counter.finish();
@@ -489,7 +494,7 @@ fn blow_up(args: &StudyArgs, duration: f64) -> anyhow::Result<ExitCode> {
         rope::methods::REPORT.method
     );
     let counter = Counter::new(runs, "rope study", "runs");
-    let command = std::env::args().collect::<Vec<_>>().join(" ");
+    let command = command_line();
     let markdown =
         rope::study::execute_blow_up(&scene, duration, &args.out, &command, || counter.inc())?;
     counter.finish();

@@ -19,7 +19,9 @@ pub struct Choice {
     pub segments: usize,
     pub dt: f64,
     pub predicted_error: f64,
-    /// Predicted CPU seconds for the duration asked.
+    /// Predicted CPU seconds of the steps for the duration asked: what the rule ranks the
+    /// methods by (the run's whole cost, frames and the estimate's shadow with it, is
+    /// `run::Cost`'s).
     pub predicted_seconds: f64,
 }
 
@@ -98,7 +100,6 @@ fn choice(method: MethodKind, segments: usize, duration: f64) -> Choice {
         segments,
         dt,
         predicted_error: d.error_model.bound(segments),
-        // The run's steps, and its shadow's (N/2 segments, half the steps): a quarter more.
-        predicted_seconds: 1.25 * d.ns_per_segment_step * 1e-9 * segments as f64 * steps,
+        predicted_seconds: d.ns_per_segment_step * 1e-9 * segments as f64 * steps,
     }
 }

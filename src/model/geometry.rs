@@ -40,6 +40,19 @@ pub fn centres(angles: &[f64], out: &mut Vec<Point>) {
     }
 }
 
+/// The point at arc length `s` (0 at the support, 1 at the tip) along the equal segments
+/// between `nodes` (support … tip).
+pub fn at_arc_length(nodes: &[Point], s: f64) -> Point {
+    let segments = nodes.len().saturating_sub(1);
+    if segments == 0 {
+        return nodes.first().copied().unwrap_or_else(Point::origin);
+    }
+    let x = s * segments as f64;
+    let i = (x.floor() as usize).min(segments - 1);
+    let frac = x - i as f64;
+    nodes[i] + frac * (nodes[i + 1] - nodes[i])
+}
+
 /// The tip (free end) position.
 pub fn tip(angles: &[f64]) -> Point {
     let h = 1.0 / angles.len() as f64;
@@ -134,6 +147,19 @@ pub fn tip_acceleration(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_point_along_the_string_is_found_by_arc_length() {
+        let nodes = [
+            Point::new(0.0, 0.0),
+            Point::new(0.5, 0.0),
+            Point::new(0.5, 0.5),
+        ];
+        assert_eq!(at_arc_length(&nodes, 0.0), nodes[0]);
+        assert_eq!(at_arc_length(&nodes, 0.25), Point::new(0.25, 0.0));
+        assert_eq!(at_arc_length(&nodes, 0.75), Point::new(0.5, 0.25));
+        assert_eq!(at_arc_length(&nodes, 1.0), nodes[2]);
+    }
 
     #[test]
     fn hanging_string_at_rest_has_potential_minus_one_half() {

@@ -400,14 +400,14 @@ impl RopeLogger {
         for (i, (entity, ..)) in SERIES.iter().enumerate() {
             // A value a frame does not have (NaN) is not sent: a series a method does not
             // have is not sent at all.
-            let kept: Vec<_> = rows.iter().filter(|r| !r.2[i].is_nan()).collect();
-            if kept.is_empty() {
+            let kept = || rows.iter().filter(move |r| !r.2[i].is_nan());
+            if kept().next().is_none() {
                 continue;
             }
             self.rec.send_columns(
                 *entity,
-                timelines(kept.iter().map(|r| r.0), kept.iter().map(|r| r.1)),
-                rerun::Scalars::new(kept.iter().map(|r| r.2[i])).columns_of_unit_batches()?,
+                timelines(kept().map(|r| r.0), kept().map(|r| r.1)),
+                rerun::Scalars::new(kept().map(|r| r.2[i])).columns_of_unit_batches()?,
             )?;
         }
         if let Some(eps) = self.tolerance {

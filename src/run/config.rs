@@ -2,7 +2,7 @@
 //! once checked ([`RunPlan`], validated once, every value resolved).
 
 use super::cost::{self, Cost, Limits};
-use super::estimate::{STRIDE, Shadow};
+use super::estimate::Shadow;
 use crate::error::ConfigError;
 use crate::methods::{Method, MethodKind};
 use crate::model::Scene;
@@ -103,12 +103,14 @@ impl RunConfig {
         crate::methods::method::validate_segments(d, segments)?;
         crate::methods::method::validate_dt(dt)?;
         let error_estimate = self.error_estimate && Shadow::possible(method, segments);
-        let mut cost = Cost::of_run(method, segments, dt, self.duration, self.log_rate);
-        if error_estimate {
-            let half = Shadow::segments_of(segments);
-            let shadow = Cost::of_run(method, half, dt * STRIDE as f64, self.duration, 0.0);
-            cost = cost.with(&shadow);
-        }
+        let cost = Cost::of_estimated_run(
+            method,
+            segments,
+            dt,
+            self.duration,
+            self.log_rate,
+            error_estimate,
+        );
         self.check_cost(&cost, dt)?;
         // Whether the method can start from the scene does not depend on N: building it at
         // its fewest segments says so without allocating the run.

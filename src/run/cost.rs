@@ -2,6 +2,7 @@
 //! cost model, and the limits a run must stay within (the machine's memory, a day of CPU
 //! unless the user says yes).
 
+use super::estimate::{STRIDE, Shadow};
 use crate::methods::MethodKind;
 use std::time::Duration;
 
@@ -59,6 +60,30 @@ impl Cost {
             seconds,
             bytes: BASE_BYTES.saturating_add((segments as u64).saturating_mul(per_segment)),
         }
+    }
+
+    /// As [`Cost::of_run`], with the run's shadow at N/2 and twice the step (the live error
+    /// estimate, `run::estimate`) if `estimate` and the run can be halved.
+    pub fn of_estimated_run(
+        method: MethodKind,
+        segments: usize,
+        dt: f64,
+        duration: f64,
+        log_rate: f64,
+        estimate: bool,
+    ) -> Self {
+        let run = Self::of_run(method, segments, dt, duration, log_rate);
+        if !(estimate && Shadow::possible(method, segments)) {
+            return run;
+        }
+        let half = Shadow::segments_of(segments);
+        run.with(&Self::of_run(
+            method,
+            half,
+            dt * STRIDE as f64,
+            duration,
+            0.0,
+        ))
     }
 
     /// This run and `other` side by side: their CPU times and their state added (`other`'s

@@ -111,7 +111,7 @@ impl Shadow {
             .nodes
             .iter()
             .enumerate()
-            .map(|(j, p)| (at_arc_length(nodes, j as f64 / half) - p).norm())
+            .map(|(j, p)| (geometry::at_arc_length(nodes, j as f64 / half) - p).norm())
             .fold(0.0, f64::max);
         Some(ErrorEstimate {
             tip: (tip - shadow_tip).norm() * self.richardson,
@@ -120,35 +120,9 @@ impl Shadow {
     }
 }
 
-/// The point at arc length `s` (0 at the support, 1 at the tip) along equal segments
-/// between `nodes`.
-fn at_arc_length(nodes: &[Point], s: f64) -> Point {
-    let segments = nodes.len().saturating_sub(1);
-    if segments == 0 {
-        return nodes.first().copied().unwrap_or_else(Point::origin);
-    }
-    let x = s * segments as f64;
-    let i = (x.floor() as usize).min(segments - 1);
-    let frac = x - i as f64;
-    nodes[i] + frac * (nodes[i + 1] - nodes[i])
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn a_point_along_the_string_is_found_by_arc_length() {
-        let nodes = [
-            Point::new(0.0, 0.0),
-            Point::new(0.5, 0.0),
-            Point::new(0.5, 0.5),
-        ];
-        assert_eq!(at_arc_length(&nodes, 0.0), nodes[0]);
-        assert_eq!(at_arc_length(&nodes, 0.25), Point::new(0.25, 0.0));
-        assert_eq!(at_arc_length(&nodes, 0.75), Point::new(0.5, 0.25));
-        assert_eq!(at_arc_length(&nodes, 1.0), nodes[2]);
-    }
 
     #[test]
     fn a_run_too_coarse_to_halve_has_no_shadow() {

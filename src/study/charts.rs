@@ -11,10 +11,10 @@ use std::path::Path;
 
 /// The font every chart uses, shipped so that PNGs render the same on any machine.
 static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
-const SANS: &str = "sans-serif";
+pub(crate) const SANS: &str = "sans-serif";
 pub(crate) const SIZE: (u32, u32) = (1100, 620);
 
-type Drawn<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
+pub(crate) type Drawn<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
 
 /// A named, coloured line of (x, y) points.
 pub(crate) type Series = (String, RGBColor, Vec<(f64, f64)>);
@@ -65,7 +65,7 @@ pub(crate) fn shade(method: MethodKind, i: usize, count: usize) -> RGBColor {
 }
 
 /// Draws the legend box every chart uses, at `position` with labels of `size` points.
-fn legend<'a, 'b, DB: DrawingBackend + 'a, CT: plotters::coord::CoordTranslate>(
+pub(crate) fn legend<'a, 'b, DB: DrawingBackend + 'a, CT: plotters::coord::CoordTranslate>(
     mut labels: plotters::chart::SeriesLabelStyle<'a, 'b, DB, CT>,
     position: SeriesLabelPosition,
     size: u32,

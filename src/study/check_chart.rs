@@ -2,14 +2,12 @@
 //! error, one panel per method, one colour per scene, with the band of a factor 3 around
 //! equality.
 
-use super::charts::SIZE;
+use super::charts::{Drawn, SANS, SIZE, legend};
 use super::estimate_check::{Cell, FACTOR, RESOLVED};
 use crate::methods::MethodKind;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
-
-const SANS: &str = "sans-serif";
 
 /// One colour per scene, in the order the check lists them.
 const SCENE_COLOURS: [RGBColor; 6] = [
@@ -31,8 +29,6 @@ pub fn write(dir: &Path, cells: &[Cell]) -> anyhow::Result<()> {
         .map_err(|e| anyhow::anyhow!("writing {}: {e:?}", png.display()))?;
     Ok(())
 }
-
-type Drawn<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
 
 fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, cells: &[Cell]) -> Drawn<DB> {
     root.fill(&WHITE)?;
@@ -106,13 +102,11 @@ fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, cells: &[Cell]) -> Dr
                 .label(scene.to_string())
                 .legend(move |(x, y)| Circle::new((x + 6, y), 4, colour.filled()));
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerRight)
-            .label_font((SANS, 11))
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK.mix(0.3))
-            .draw()?;
+        legend(
+            chart.configure_series_labels(),
+            SeriesLabelPosition::LowerRight,
+            11,
+        )?;
     }
     Ok(())
 }

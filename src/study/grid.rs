@@ -29,22 +29,17 @@ impl Spec {
         self.duration / (self.duration / dt).round().max(1.0)
     }
 
-    /// The grid's runs, the most expensive first (so the parallel tail is short).
+    /// The grid's runs in a fixed order, the same on every machine: methods as listed, then
+    /// N, then k, as given (shards are cut from it; [`run_cells`] reorders for speed).
     pub fn cells(&self) -> Vec<(MethodKind, usize, f64)> {
-        let mut cells: Vec<_> = self
-            .methods
+        self.methods
             .iter()
             .flat_map(|&m| {
                 self.segments
                     .iter()
                     .flat_map(move |&n| self.dts.iter().map(move |&dt| (m, n, self.snap(dt))))
             })
-            .collect();
-        let cost = |&(m, n, dt): &(MethodKind, usize, f64)| {
-            m.descriptor().ns_per_segment_step * n as f64 / dt
-        };
-        cells.sort_by(|a, b| cost(b).total_cmp(&cost(a)));
-        cells
+            .collect()
     }
 }
 
@@ -107,14 +102,8 @@ pub struct Row {
 pub fn shape(angles: &[f64]) -> Vec<Point> {
     let mut nodes = Vec::with_capacity(angles.len() + 1);
     geometry::nodes(angles, &mut nodes);
-    let n = angles.len();
     (0..SHAPE_POINTS)
-        .map(|j| {
-            let s = j as f64 / (SHAPE_POINTS - 1) as f64 * n as f64;
-            let i = (s.floor() as usize).min(n - 1);
-            let frac = s - i as f64;
-            nodes[i] + frac * (nodes[i + 1] - nodes[i])
-        })
+        .map(|j| geometry::at_arc_length(&nodes, j as f64 / (SHAPE_POINTS - 1) as f64))
         .collect()
 }
 
@@ -168,8 +157,8 @@ pub fn run_grid(spec: &Spec, progress: impl Fn() + Sync) -> Vec<Row> {
     run_cells(spec, spec.cells(), progress)
 }
 
-/// Runs `cells` of `spec`'s grid in parallel, the most expensive first; `progress` is called
-/// after each. The rows come sorted by method, N and k.
+/// Runs `cells` of `spec`'s grid in parallel, the most expensive first (so the parallel tail
+/// is short); `progress` is called after each. The rows come sorted by method, N and k.
 pub fn run_cells(
     spec: &Spec,
     mut cells: Vec<(MethodKind, usize, f64)>,

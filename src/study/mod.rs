@@ -109,11 +109,21 @@ pub fn execute_reference_only(
     out: &Path,
 ) -> anyhow::Result<std::path::PathBuf> {
     create_dir(out)?;
-    let r = reference(&spec.scene, spec.duration, reference_segments)?;
-    let file = shard::ReferenceFile::new(spec.scene, spec.duration, reference_segments, &r);
+    let file = reference_file(spec, reference_segments)?;
     let path = out.join(shard::REFERENCE);
     write(&path, &serde_json::to_string_pretty(&file)?)?;
     Ok(path)
+}
+
+/// The reference of `spec` at `reference_segments`, computed, as a file holds it.
+fn reference_file(spec: &Spec, reference_segments: usize) -> anyhow::Result<shard::ReferenceFile> {
+    let r = reference(&spec.scene, spec.duration, reference_segments)?;
+    Ok(shard::ReferenceFile::new(
+        spec.scene,
+        spec.duration,
+        reference_segments,
+        &r,
+    ))
 }
 
 /// Runs one shard's cells of the grid, measured against `reference` (computed here when
@@ -131,10 +141,7 @@ pub fn execute_shard(
     create_dir(out)?;
     let reference = match reference {
         Some(file) => file,
-        None => {
-            let r = reference::reference(&spec.scene, spec.duration, reference_segments)?;
-            shard::ReferenceFile::new(spec.scene, spec.duration, reference_segments, &r)
-        }
+        None => reference_file(spec, reference_segments)?,
     };
     let mut rows = grid::run_cells(spec, shard.cells(spec), progress);
     measure_errors(&mut rows, &reference.reference());
@@ -229,7 +236,7 @@ pub fn execute_long_runs(
 ) -> anyhow::Result<String> {
     use anyhow::Context as _;
     use rayon::prelude::*;
-    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    create_dir(out)?;
     // A method that cannot start from a scene (the seed from the horizontal) is left out,
     // with its reason in the Markdown.
     let mut pairs = Vec::new();
@@ -252,8 +259,7 @@ pub fn execute_long_runs(
     let csv = out.join("long_run.csv");
     long_run::write_csv(&runs, &csv).with_context(|| format!("writing {}", csv.display()))?;
     let markdown = long_run::markdown(&runs, duration, command) + &left_out.concat();
-    let md = out.join("long_run.md");
-    std::fs::write(&md, &markdown).with_context(|| format!("writing {}", md.display()))?;
+    write(&out.join("long_run.md"), &markdown)?;
     charts::register_font()?;
     long_charts::write_long_runs(out, &runs)?;
     Ok(markdown)
@@ -270,7 +276,7 @@ pub fn execute_blow_up(
     tick: impl Fn() + Sync,
 ) -> anyhow::Result<String> {
     use anyhow::Context as _;
-    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    create_dir(out)?;
     let lifetimes = blow_up::lifetimes(scene, duration, tick);
     let dt = REPORT.method.default_dt(REPORT.segments);
     let saw = blow_up::sawtooth(scene, dt, duration)?;
@@ -282,8 +288,7 @@ pub fn execute_blow_up(
     }
     csv.flush()?;
     let markdown = blow_up::markdown(scene, &lifetimes, saw.as_ref(), duration, command);
-    let md = out.join("blow_up.md");
-    std::fs::write(&md, &markdown).with_context(|| format!("writing {}", md.display()))?;
+    write(&out.join("blow_up.md"), &markdown)?;
     charts::register_font()?;
     long_charts::write_blow_up(out, &lifetimes, saw.as_ref())?;
     Ok(markdown)
@@ -299,14 +304,13 @@ pub fn execute_estimate_check(
     tick: impl Fn() + Sync,
 ) -> anyhow::Result<String> {
     use anyhow::Context as _;
-    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    create_dir(out)?;
     let cells = estimate_check::check(spec, tick)?;
     let csv = out.join("estimate_check.csv");
     estimate_check::write_csv(&cells, &csv)
         .with_context(|| format!("writing {}", csv.display()))?;
     let markdown = estimate_check::markdown(spec, &cells, command);
-    let md = out.join("estimate_check.md");
-    std::fs::write(&md, &markdown).with_context(|| format!("writing {}", md.display()))?;
+    write(&out.join("estimate_check.md"), &markdown)?;
     charts::register_font()?;
     check_chart::write(out, &cells)?;
     Ok(markdown)

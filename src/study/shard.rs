@@ -15,7 +15,7 @@ pub const MANIFEST: &str = "shard.json";
 /// The file `--reference-only` writes.
 pub const REFERENCE: &str = "reference.json";
 
-/// Shard `index` of `count`: the cells whose place in [`ordered_cells`] is `index` mod `count`.
+/// Shard `index` of `count`: the cells whose place in [`Spec::cells`] is `index` mod `count`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Shard {
     pub index: usize,
@@ -49,26 +49,13 @@ impl std::fmt::Display for Shard {
 impl Shard {
     /// This shard's cells of `spec`'s grid.
     pub fn cells(&self, spec: &Spec) -> Vec<(MethodKind, usize, f64)> {
-        ordered_cells(spec)
+        spec.cells()
             .into_iter()
             .enumerate()
             .filter(|(i, _)| i % self.count == self.index)
             .map(|(_, cell)| cell)
             .collect()
     }
-}
-
-/// The grid's cells in a fixed order, the same on every machine: methods as listed, then N,
-/// then k, as given.
-pub fn ordered_cells(spec: &Spec) -> Vec<(MethodKind, usize, f64)> {
-    spec.methods
-        .iter()
-        .flat_map(|&m| {
-            spec.segments
-                .iter()
-                .flat_map(move |&n| spec.dts.iter().map(move |&dt| (m, n, spec.snap(dt))))
-        })
-        .collect()
 }
 
 /// A cell in words, for messages: "chain N = 50 k = 1e-3".
@@ -313,7 +300,7 @@ mod tests {
             segments: vec![10, 20, 50],
             dts: vec![1e-3, 1e-2],
         };
-        let all = ordered_cells(&spec);
+        let all = spec.cells();
         let mut covered: Vec<_> = (0..4)
             .flat_map(|index| Shard { index, count: 4 }.cells(&spec))
             .collect();
