@@ -107,3 +107,29 @@ fn tip_position_at_t1_converges_at_second_order() {
     let seed = tip_at_t1(MethodKind::Seed, 100);
     assert!((seed - fine).norm() > 30.0 * errors[2]);
 }
+
+#[test]
+fn a_finer_step_refines_the_whips_too_energy_error_falls_as_k_to_the_fourth() {
+    // From the horizontal the free end whips again and again in the first ten time units,
+    // and the steps split into substeps there. Below the default step the substeps shrink
+    // with k, so RK4's energy error falls about as k⁴ (16× per halving) through the whips.
+    let n = 20;
+    let default = MethodKind::Chain.default_dt(n);
+    let errors: Vec<(f64, f64)> = [1.0, 0.5, 0.25]
+        .iter()
+        .map(|f| {
+            let dt = f * default;
+            let (outcome, _) = run_frames(MethodKind::Chain, HORIZONTAL, n, dt, 10.0, 60.0);
+            assert!(outcome.diverged.is_none());
+            (dt, outcome.max_abs_deviation)
+        })
+        .collect();
+    for pair in errors.windows(2) {
+        let ratio = pair[0].1 / pair[1].1;
+        assert!(
+            ratio > 8.0,
+            "halving k from {:e} divided the energy error by {ratio:.2}, not about 16: {errors:?}",
+            pair[0].0
+        );
+    }
+}

@@ -23,7 +23,8 @@ use crate::model::Scene;
 use crate::model::geometry::{self, Energy};
 
 /// Substep bounds: k_sub ≤ C_F h / sqrt(F_max) (measured stable up to C_F ≈ 0.6 at N = 100)
-/// and k_sub |φ̇|_max ≤ C_ω.
+/// and k_sub |φ̇|_max ≤ C_ω, at the default step and above; a finer step tightens both in
+/// proportion (the field `refinement`), so that it refines the whip as much as the rest.
 const SUBSTEP_COURANT: f64 = 0.4;
 const SUBSTEP_ROTATION: f64 = 0.02;
 /// A state needing more substeps than this per step is treated as blown up.
@@ -58,6 +59,8 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
 #[derive(Clone, Debug)]
 pub struct Chain {
     k: f64,
+    /// min(1, k / k_default): what the substep bounds are multiplied by.
+    refinement: f64,
     steps: u64,
     phi: Vec<f64>,
     omega: Vec<f64>,
@@ -79,6 +82,7 @@ impl Chain {
         let n = segments;
         let mut chain = Self {
             k: dt,
+            refinement: (dt / DESCRIPTOR.default_dt(n)).min(1.0),
             steps: 0,
             phi: scene.initial_angles(n),
             omega: vec![0.0; n],
@@ -109,8 +113,8 @@ impl Chain {
     /// must each be resolved (k_sub ≤ C_F h / sqrt(F) and k_sub ≤ C_ω / |φ̇|).
     fn substeps(&self, force: f64, rate: f64) -> u64 {
         let h = 1.0 / self.phi.len() as f64;
-        let wave = self.k * force.max(1e-12).sqrt() / (SUBSTEP_COURANT * h);
-        let spin = self.k * rate / SUBSTEP_ROTATION;
+        let wave = self.k * force.max(1e-12).sqrt() / (SUBSTEP_COURANT * self.refinement * h);
+        let spin = self.k * rate / (SUBSTEP_ROTATION * self.refinement);
         let needed = wave.max(spin).ceil();
         if needed.is_finite() {
             (needed as u64).clamp(1, MAX_SUBSTEPS)

@@ -24,7 +24,10 @@
 //! backward pass that back-substitutes, moves the rods and measures the new gaps.
 //!
 //! **Step control, kept reversible.** A step k is split into m equal substeps so that
-//! k/m · max|θ̇| ≤ [`ROTATION`] through the whip of the free end. The rule is symmetric in
+//! k/m · max|θ̇| ≤ [`ROTATION`] · min(1, k / k_default) through the whip of the free end: at
+//! the default step and above the bound is [`ROTATION`], and a finer k tightens it in
+//! proportion, so that halving k halves every substep, the whip's too (with a fixed bound the
+//! whip's substeps, and its energy error, would not change with k). The rule is symmetric in
 //! time: m must satisfy it at *both* ends of the step, so a step that ends faster than it
 //! began is retaken with the end's m. Run backwards, the same step picks the same m (Hairer
 //! & Söderlind, SIAM J. Sci. Comput. 26, 2005, make the point for variable steps). An integer
@@ -45,7 +48,8 @@ use nalgebra::Vector2;
 /// C of the estimate k = C h / sqrt(F_max) past which steps split into substeps (Newton
 /// slows there); the method never blows up past it, it pays for the substeps.
 const COURANT: f64 = 0.4;
-/// Largest rotation of a rod per substep, k_sub · max|θ̇|.
+/// Largest rotation of a rod per substep, k_sub · max|θ̇|, at the default step and above;
+/// a finer step tightens it in proportion (see the step control above).
 const ROTATION: f64 = 0.05;
 /// Newton stops when every joint closes to this (string lengths).
 const TOLERANCE: f64 = 1e-12;
@@ -122,6 +126,8 @@ impl State {
 pub struct Rattle {
     h: f64,
     k: f64,
+    /// The largest rotation of a rod per substep (see the module's step control).
+    rotation: f64,
     steps: u64,
     now: State,
     /// The state at the start of the step, to retake it from.
@@ -166,6 +172,7 @@ impl Rattle {
         let mut rattle = Self {
             h: 1.0 / n as f64,
             k: dt,
+            rotation: ROTATION * (dt / DESCRIPTOR.default_dt(n)).min(1.0),
             steps: 0,
             start: now.clone(),
             before_centre: now.centre.clone(),
@@ -199,7 +206,7 @@ impl Rattle {
 
     /// How many substeps a step needs in the current state (at least one).
     fn substeps(&self) -> u64 {
-        let needed = (self.k * self.fastest_spin() / ROTATION).ceil();
+        let needed = (self.k * self.fastest_spin() / self.rotation).ceil();
         if needed.is_finite() {
             (needed as u64).clamp(1, MAX_SUBSTEPS)
         } else {
