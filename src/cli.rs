@@ -107,7 +107,8 @@ pub struct StudyArgs {
     #[arg(long, value_delimiter = ',', default_values_t = [10, 20, 50, 100, 200, 500, 1000])]
     pub segments: Vec<usize>,
 
-    /// Time steps k [default: 1e-6 to 3e-2 in half-decades].
+    /// Time steps k [default: 1e-6 to 3e-2 in half-decades; with --long-run, each method's
+    /// default step].
     #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
     pub dts: Option<Vec<f64>>,
 
@@ -124,8 +125,8 @@ pub struct StudyArgs {
     pub save: Option<PathBuf>,
 
     /// Instead of the grid: swing each method of --methods from each --angle (a list) for
-    /// this many time units at N = 100 and its default step, and chart |E − E_ref| against
-    /// t (--segments, --dts and --duration are not used).
+    /// this many time units at N = 100 and its default step (or at each of --dts), and chart
+    /// |E − E_ref| against t (--segments and --duration are not used).
     #[arg(long, value_name = "T", allow_negative_numbers = true)]
     pub long_run: Option<f64>,
 
@@ -206,6 +207,8 @@ pub fn reference_file(
 pub struct LongRunPlan {
     pub duration: f64,
     pub scenes: Vec<Scene>,
+    /// The steps every method runs at; `None`: each at its default step.
+    pub dts: Option<Vec<f64>>,
     pub cost: Cost,
 }
 
@@ -267,12 +270,25 @@ impl StudyArgs {
         for scene in &scenes {
             scene.validate()?;
         }
+        if let Some(&dt) = self
+            .dts
+            .iter()
+            .flatten()
+            .find(|dt| !(dt.is_finite() && **dt > 0.0))
+        {
+            return Err(ConfigError::StudyTimeStep(dt));
+        }
         let segments = crate::methods::REPORT.segments;
         let costs: Vec<Cost> = self
             .methods
             .iter()
-            .flat_map(|&m| scenes.iter().map(move |_| m))
-            .map(|m| Cost::of_run(m, segments, m.default_dt(segments), duration, 10.0))
+            .flat_map(|&m| {
+                crate::study::long_run::steps(m, self.dts.as_deref())
+                    .into_iter()
+                    .map(move |dt| (m, dt))
+            })
+            .flat_map(|run| scenes.iter().map(move |_| run))
+            .map(|(m, dt)| Cost::of_run(m, segments, dt, duration, 10.0))
             .collect();
         let cost = Cost {
             seconds: costs.iter().map(|c| c.seconds).sum(),
@@ -281,7 +297,7 @@ impl StudyArgs {
         if cost.seconds > cost::LONG_SECONDS && !self.limits.yes {
             return Err(ConfigError::LongRunTooLong {
                 flag: "long-run",
-                fewer: " (or fewer --methods and --angle)",
+                fewer: " (or fewer --methods, --angle or --dts)",
                 runs: costs.len(),
                 cost: cost::seconds_text(cost.seconds),
             });
@@ -289,6 +305,7 @@ impl StudyArgs {
         Ok(LongRunPlan {
             duration,
             scenes,
+            dts: self.dts.clone(),
             cost,
         })
     }

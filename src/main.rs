@@ -387,7 +387,8 @@ fn long_runs(args: &StudyArgs, duration: f64) -> anyhow::Result<ExitCode> {
     if let Err(err) = writable_dir("out", &args.out) {
         return Ok(bad_input(&err));
     }
-    let runs = (args.methods.len() * plan.scenes.len()) as u64;
+    let steps = plan.dts.as_ref().map_or(1, Vec::len);
+    let runs = (args.methods.len() * plan.scenes.len() * steps) as u64;
     eprintln!(
         "rope study: {runs} long runs of {duration} time units on {} threads, predicted {} of CPU",
         rayon::current_num_threads(),
@@ -402,6 +403,7 @@ fn long_runs(args: &StudyArgs, duration: f64) -> anyhow::Result<ExitCode> {
     let markdown = rope::study::execute_long_runs(
         &args.methods,
         &plan.scenes,
+        plan.dts.as_deref(),
         duration,
         &args.out,
         &command,

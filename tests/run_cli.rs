@@ -487,6 +487,45 @@ fn a_long_run_study_charts_the_energy_and_leaves_out_what_cannot_start() {
 }
 
 #[test]
+fn a_long_run_at_chosen_steps_has_a_row_and_a_line_for_each_step() {
+    let dir = Scratch::new("long-run-steps");
+    let out = rope(&[
+        "study",
+        "--long-run",
+        "2",
+        "--methods",
+        "rattle",
+        "--dts",
+        "1e-3,5e-4",
+        "--out",
+        dir.path("steps").to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    let table = std::fs::read_to_string(dir.path("steps/long_run.md")).unwrap();
+    for row in [
+        "| rattle | release at 30° | 1.000e-3 | 2.0 |",
+        "| rattle | release at 30° | 5.000e-4 | 2.0 |",
+    ] {
+        assert!(table.contains(row), "{row} missing from {table}");
+    }
+    let csv = std::fs::read_to_string(dir.path("steps/long_run.csv")).unwrap();
+    let steps: std::collections::BTreeSet<&str> = csv
+        .lines()
+        .skip(1)
+        .map(|line| line.split(',').nth(2).unwrap_or(""))
+        .collect();
+    assert_eq!(steps.into_iter().collect::<Vec<_>>(), ["0.0005", "0.001"]);
+    let bad = rope(&["study", "--long-run", "2", "--dts", "0"]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(
+        String::from_utf8_lossy(&bad.stderr).contains("dts"),
+        "{}",
+        String::from_utf8_lossy(&bad.stderr)
+    );
+}
+
+#[test]
 fn a_blow_up_study_maps_the_seed_schemes_lifetime() {
     let dir = Scratch::new("blow-up");
     let out = rope(&[

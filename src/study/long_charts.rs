@@ -16,6 +16,9 @@ pub fn write_long_runs(dir: &Path, runs: &[LongRun]) -> anyhow::Result<()> {
             let same: Vec<_> = runs.iter().filter(|o| o.method == r.method).collect();
             let i = same.iter().position(|o| std::ptr::eq(*o, r)).unwrap_or(0);
             let mut name = format!("{}, {}", r.method, r.scene);
+            if runs.iter().any(|o| o.method == r.method && o.dt != r.dt) {
+                name += &format!(", k = {:e}", r.dt);
+            }
             if let Some(d) = &r.diverged {
                 name += &format!(" (diverged at t = {:.1})", d.time);
             }
@@ -32,7 +35,7 @@ pub fn write_long_runs(dir: &Path, runs: &[LongRun]) -> anyhow::Result<()> {
         dir,
         "long_run",
         lines,
-        "Energy error over a long swing (N = 100, default steps)",
+        "Energy error over a long swing (N = 100)",
         "t (time units)",
         "max |E − E_ref| in each bin",
         (true, true),

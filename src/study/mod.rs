@@ -222,13 +222,14 @@ fn write(path: &Path, text: &str) -> anyhow::Result<()> {
     std::fs::write(path, text).with_context(|| format!("writing {}", path.display()))
 }
 
-/// Runs every method of `methods` from every scene of `scenes` for `duration` time units (in
-/// parallel, a core each), and writes `long_run.csv`, `long_run.md` and the chart
+/// Runs every method of `methods` from every scene of `scenes` at every step of `dts` (each at
+/// its default step if `None`) for `duration` time units (in parallel, a core each), and writes `long_run.csv`, `long_run.md` and the chart
 /// `long_run.svg`/`.png` into `out`. Returns the Markdown. `tick` is called once per time
 /// unit simulated, by any run.
 pub fn execute_long_runs(
     methods: &[MethodKind],
     scenes: &[crate::model::Scene],
+    dts: Option<&[f64]>,
     duration: f64,
     out: &Path,
     command: &str,
@@ -239,22 +240,26 @@ pub fn execute_long_runs(
     create_dir(out)?;
     // A method that cannot start from a scene (the seed from the horizontal) is left out,
     // with its reason in the Markdown.
-    let mut pairs = Vec::new();
+    let mut runs = Vec::new();
     let mut left_out = Vec::new();
     for &m in methods {
-        for &s in scenes {
-            match m.build(&s, REPORT.segments, m.default_dt(REPORT.segments)) {
-                Ok(_) => pairs.push((m, s)),
-                Err(err) => left_out.push(format!("\nLeft out: {m} from the {s}: {err}.\n")),
+        for dt in long_run::steps(m, dts) {
+            for &s in scenes {
+                match m.build(&s, REPORT.segments, dt) {
+                    Ok(_) => runs.push((m, s, dt)),
+                    Err(err) => left_out.push(format!(
+                        "\nLeft out: {m} from the {s} at k = {dt:e}: {err}.\n"
+                    )),
+                }
             }
         }
     }
     for _ in 0..left_out.len() as u64 * duration.ceil() as u64 {
         tick();
     }
-    let runs = pairs
+    let runs = runs
         .par_iter()
-        .map(|&(m, s)| long_run::run(m, s, duration, &tick))
+        .map(|&(m, s, dt)| long_run::run(m, s, dt, duration, &tick))
         .collect::<anyhow::Result<Vec<_>>>()?;
     let csv = out.join("long_run.csv");
     long_run::write_csv(&runs, &csv).with_context(|| format!("writing {}", csv.display()))?;
