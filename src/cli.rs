@@ -202,13 +202,20 @@ pub fn reference_file(
     Ok(file)
 }
 
+/// Every study step must be a positive, finite number.
+fn check_dts(dts: &[f64]) -> Result<(), ConfigError> {
+    match dts.iter().find(|dt| !(dt.is_finite() && **dt > 0.0)) {
+        Some(&dt) => Err(ConfigError::StudyTimeStep(dt)),
+        None => Ok(()),
+    }
+}
+
 /// A validated `rope study --long-run`: its runs and what they will cost.
 #[derive(Clone, Debug)]
 pub struct LongRunPlan {
     pub duration: f64,
-    pub scenes: Vec<Scene>,
-    /// The steps every method runs at; `None`: each at its default step.
-    pub dts: Option<Vec<f64>>,
+    /// Method, scene and step of each run (see [`crate::study::long_run::runs`]).
+    pub runs: Vec<(MethodKind, Scene, f64)>,
     pub cost: Cost,
 }
 
@@ -270,25 +277,14 @@ impl StudyArgs {
         for scene in &scenes {
             scene.validate()?;
         }
-        if let Some(&dt) = self
-            .dts
-            .iter()
-            .flatten()
-            .find(|dt| !(dt.is_finite() && **dt > 0.0))
-        {
-            return Err(ConfigError::StudyTimeStep(dt));
+        if let Some(dts) = &self.dts {
+            check_dts(dts)?;
         }
         let segments = crate::methods::REPORT.segments;
-        let costs: Vec<Cost> = self
-            .methods
+        let runs = crate::study::long_run::runs(&self.methods, &scenes, self.dts.as_deref());
+        let costs: Vec<Cost> = runs
             .iter()
-            .flat_map(|&m| {
-                crate::study::long_run::steps(m, self.dts.as_deref())
-                    .into_iter()
-                    .map(move |dt| (m, dt))
-            })
-            .flat_map(|run| scenes.iter().map(move |_| run))
-            .map(|(m, dt)| Cost::of_run(m, segments, dt, duration, 10.0))
+            .map(|&(m, _, dt)| Cost::of_run(m, segments, dt, duration, 10.0))
             .collect();
         let cost = Cost {
             seconds: costs.iter().map(|c| c.seconds).sum(),
@@ -304,8 +300,7 @@ impl StudyArgs {
         }
         Ok(LongRunPlan {
             duration,
-            scenes,
-            dts: self.dts.clone(),
+            runs,
             cost,
         })
     }
@@ -317,9 +312,7 @@ impl StudyArgs {
             return Err(ConfigError::StudyDuration(self.duration));
         }
         let dts = self.dts();
-        if let Some(&dt) = dts.iter().find(|dt| !(dt.is_finite() && **dt > 0.0)) {
-            return Err(ConfigError::StudyTimeStep(dt));
-        }
+        check_dts(&dts)?;
         let min = MethodKind::ALL
             .iter()
             .map(|m| m.descriptor().min_segments)

@@ -387,8 +387,7 @@ fn long_runs(args: &StudyArgs, duration: f64) -> anyhow::Result<ExitCode> {
     if let Err(err) = writable_dir("out", &args.out) {
         return Ok(bad_input(&err));
     }
-    let steps = plan.dts.as_ref().map_or(1, Vec::len);
-    let runs = (args.methods.len() * plan.scenes.len() * steps) as u64;
+    let runs = plan.runs.len() as u64;
     eprintln!(
         "rope study: {runs} long runs of {duration} time units on {} threads, predicted {} of CPU",
         rayon::current_num_threads(),
@@ -400,15 +399,10 @@ fn long_runs(args: &StudyArgs, duration: f64) -> anyhow::Result<ExitCode> {
         "time units",
     );
     let command = command_line();
-    let markdown = rope::study::execute_long_runs(
-        &args.methods,
-        &plan.scenes,
-        plan.dts.as_deref(),
-        duration,
-        &args.out,
-        &command,
-        || counter.inc(),
-    )?;
+    let markdown =
+        rope::study::execute_long_runs(&plan.runs, duration, &args.out, &command, || {
+            counter.inc()
+        })?;
     counter.finish();
     println!("{markdown}");
     eprintln!(

@@ -24,7 +24,7 @@ use crate::model::geometry::{self, Energy};
 
 /// Substep bounds: k_sub ≤ C_F h / sqrt(F_max) (measured stable up to C_F ≈ 0.6 at N = 100)
 /// and k_sub |φ̇|_max ≤ C_ω, at the default step and above; a finer step tightens both in
-/// proportion (the field `refinement`), so that it refines the whip as much as the rest.
+/// proportion ([`Descriptor::refinement`]), so that it refines the whip as much as the rest.
 const SUBSTEP_COURANT: f64 = 0.4;
 const SUBSTEP_ROTATION: f64 = 0.02;
 /// A state needing more substeps than this per step is treated as blown up.
@@ -59,7 +59,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
 #[derive(Clone, Debug)]
 pub struct Chain {
     k: f64,
-    /// min(1, k / k_default): what the substep bounds are multiplied by.
+    /// What the substep bounds are multiplied by ([`Descriptor::refinement`]).
     refinement: f64,
     steps: u64,
     phi: Vec<f64>,
@@ -82,7 +82,7 @@ impl Chain {
         let n = segments;
         let mut chain = Self {
             k: dt,
-            refinement: (dt / DESCRIPTOR.default_dt(n)).min(1.0),
+            refinement: DESCRIPTOR.refinement(n, dt),
             steps: 0,
             phi: scene.initial_angles(n),
             omega: vec![0.0; n],

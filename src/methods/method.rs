@@ -172,6 +172,13 @@ impl Descriptor {
         round_down_nicely(self.default_step_fraction * self.stability_limit(segments))
     }
 
+    /// min(1, k / k_default): what a method's substep bounds are multiplied by, so that below
+    /// the default step a finer step refines every substep (the whip's too) in proportion,
+    /// and at the default step and above the bounds are as tuned.
+    pub fn refinement(&self, segments: usize, dt: f64) -> f64 {
+        (dt / self.default_dt(segments)).min(1.0)
+    }
+
     /// The Courant number C = k N sqrt(F_max) that a step `dt` at `segments` amounts to.
     pub fn courant_of(segments: f64, dt: f64) -> f64 {
         dt * segments * TENSION_MAX.sqrt()

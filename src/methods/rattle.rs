@@ -24,10 +24,11 @@
 //! backward pass that back-substitutes, moves the rods and measures the new gaps.
 //!
 //! **Step control, kept reversible.** A step k is split into m equal substeps so that
-//! k/m · max|θ̇| ≤ [`ROTATION`] · min(1, k / k_default) through the whip of the free end: at
-//! the default step and above the bound is [`ROTATION`], and a finer k tightens it in
-//! proportion, so that halving k halves every substep, the whip's too (with a fixed bound the
-//! whip's substeps, and its energy error, would not change with k). The rule is symmetric in
+//! k/m · max|θ̇| ≤ [`ROTATION`] · min(1, k / k_default) ([`Descriptor::refinement`]) through
+//! the whip of the free end: at the default step and above the bound is [`ROTATION`], and a
+//! finer k tightens it in proportion, so that halving k halves every substep, the whip's too
+//! (with a fixed bound the whip's substeps, and its energy error, would not change with k).
+//! The rule is symmetric in
 //! time: m must satisfy it at *both* ends of the step, so a step that ends faster than it
 //! began is retaken with the end's m. Run backwards, the same step picks the same m (Hairer
 //! & Söderlind, SIAM J. Sci. Comput. 26, 2005, make the point for variable steps). An integer
@@ -172,7 +173,7 @@ impl Rattle {
         let mut rattle = Self {
             h: 1.0 / n as f64,
             k: dt,
-            rotation: ROTATION * (dt / DESCRIPTOR.default_dt(n)).min(1.0),
+            rotation: ROTATION * DESCRIPTOR.refinement(n, dt),
             steps: 0,
             start: now.clone(),
             before_centre: now.centre.clone(),

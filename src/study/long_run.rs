@@ -1,7 +1,7 @@
 //! `rope study --long-run T`: each method from each release, left to swing for T time units
-//! at N = 100 and its default step (or each of the steps asked for). What it measures is whether the energy error stays
-//! bounded: |E − E_ref| at every frame (ten per time unit), kept as the largest in each of
-//! 50 log-spaced bins per decade of t, the least-squares slope of E(t), the largest joint gap
+//! at N = 100 and its default step (or each of the steps asked for). What it measures is
+//! whether the energy error stays bounded: |E − E_ref| at every frame (ten per time unit),
+//! kept as the largest in each of 50 log-spaced bins per decade of t, the least-squares slope of E(t), the largest joint gap
 //! (for `rattle`), and where a method diverged.
 
 use crate::error::Diverged;
@@ -96,9 +96,21 @@ fn bin_end(i: usize) -> f64 {
     FIRST_TIME * 10f64.powf(i as f64 / BINS_PER_DECADE)
 }
 
-/// The steps `method` runs at in a long run: each of `dts`, or its default step at N = 100.
-pub fn steps(method: MethodKind, dts: Option<&[f64]>) -> Vec<f64> {
-    dts.map_or_else(|| vec![method.default_dt(REPORT.segments)], <[f64]>::to_vec)
+/// The long runs to make: each method of `methods` at each step of `dts` (its default step
+/// at N = 100 if `None`) from each scene of `scenes`, in that order.
+pub fn runs(
+    methods: &[MethodKind],
+    scenes: &[Scene],
+    dts: Option<&[f64]>,
+) -> Vec<(MethodKind, Scene, f64)> {
+    let mut runs = Vec::new();
+    for &method in methods {
+        let steps = dts.map_or_else(|| vec![method.default_dt(REPORT.segments)], <[f64]>::to_vec);
+        for dt in steps {
+            runs.extend(scenes.iter().map(|&scene| (method, scene, dt)));
+        }
+    }
+    runs
 }
 
 /// Swings `method` from `scene` for `duration` time units at N = 100 and step `dt`; calls

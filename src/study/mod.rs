@@ -222,14 +222,12 @@ fn write(path: &Path, text: &str) -> anyhow::Result<()> {
     std::fs::write(path, text).with_context(|| format!("writing {}", path.display()))
 }
 
-/// Runs every method of `methods` from every scene of `scenes` at every step of `dts` (each at
-/// its default step if `None`) for `duration` time units (in parallel, a core each), and writes `long_run.csv`, `long_run.md` and the chart
+/// Makes the long `runs` (method, scene, step; see [`long_run::runs`]) for `duration` time
+/// units (in parallel, a core each), and writes `long_run.csv`, `long_run.md` and the chart
 /// `long_run.svg`/`.png` into `out`. Returns the Markdown. `tick` is called once per time
 /// unit simulated, by any run.
 pub fn execute_long_runs(
-    methods: &[MethodKind],
-    scenes: &[crate::model::Scene],
-    dts: Option<&[f64]>,
+    runs: &[(MethodKind, crate::model::Scene, f64)],
     duration: f64,
     out: &Path,
     command: &str,
@@ -240,24 +238,20 @@ pub fn execute_long_runs(
     create_dir(out)?;
     // A method that cannot start from a scene (the seed from the horizontal) is left out,
     // with its reason in the Markdown.
-    let mut runs = Vec::new();
+    let mut startable = Vec::new();
     let mut left_out = Vec::new();
-    for &m in methods {
-        for dt in long_run::steps(m, dts) {
-            for &s in scenes {
-                match m.build(&s, REPORT.segments, dt) {
-                    Ok(_) => runs.push((m, s, dt)),
-                    Err(err) => left_out.push(format!(
-                        "\nLeft out: {m} from the {s} at k = {dt:e}: {err}.\n"
-                    )),
-                }
-            }
+    for &(m, s, dt) in runs {
+        match m.build(&s, REPORT.segments, dt) {
+            Ok(_) => startable.push((m, s, dt)),
+            Err(err) => left_out.push(format!(
+                "\nLeft out: {m} from the {s} at k = {dt:e}: {err}.\n"
+            )),
         }
     }
     for _ in 0..left_out.len() as u64 * duration.ceil() as u64 {
         tick();
     }
-    let runs = runs
+    let runs = startable
         .par_iter()
         .map(|&(m, s, dt)| long_run::run(m, s, dt, duration, &tick))
         .collect::<anyhow::Result<Vec<_>>>()?;
