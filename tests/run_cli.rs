@@ -187,6 +187,63 @@ fn diverging_run_exits_non_zero_says_when_and_keeps_its_frames() {
     assert!(s["diverged"]["time"].as_f64().unwrap() < 3.0);
 }
 
+#[test]
+fn a_diverged_runs_summary_describes_its_last_trusted_state() {
+    // The report's scheme past its stability limit diverges within the first time unit,
+    // before the bend reaches the tip: the tip of the last trusted state must still be
+    // falling freely (docs/physics.md), inside the string's reach, with a finite pull at the
+    // support, and labelled as that state.
+    let dir = Scratch::new("trusted");
+    let json = dir.path("d.json");
+    let out = rope(&[
+        "run",
+        "--dt",
+        "0.01",
+        "--allow-unstable",
+        "--save",
+        dir.path("d.rrd").to_str().unwrap(),
+        "--summary",
+        json.to_str().unwrap(),
+    ]);
+    assert!(!out.status.success());
+    let s = summary(&json);
+    assert_eq!(s["status"], "diverged");
+    let diverged_at = s["diverged"]["time"].as_f64().unwrap();
+    let trusted = s["trusted"]["time"].as_f64().unwrap();
+    assert!(
+        trusted > 0.0 && trusted < diverged_at && diverged_at < 1.2,
+        "trusted t = {trusted}, diverged at t = {diverged_at}"
+    );
+    let (x, y) = (
+        s["tip"]["x"].as_f64().unwrap(),
+        s["tip"]["y"].as_f64().unwrap(),
+    );
+    let reach = x.hypot(y);
+    assert!(reach > 0.5 && reach <= 1.0 + 1e-9, "tip at ({x}, {y})");
+    let phi0 = 30f64.to_radians();
+    let across = -phi0.sin() * x + phi0.cos() * y;
+    let fallen = phi0.cos() * trusted * trusted / 2.0;
+    assert!(
+        (across - fallen).abs() < 0.02,
+        "the tip moved {across} across its line, free fall says {fallen}"
+    );
+    let tension = s["support_tension"].as_f64().unwrap();
+    assert!(tension > 0.0 && tension < 3.0, "F_0 = {tension}");
+    let (reference, last) = (
+        s["energy"]["reference"].as_f64().unwrap(),
+        s["energy"]["final"].as_f64().unwrap(),
+    );
+    assert!(
+        (last - reference).abs() < 0.05,
+        "E = {last} against E_ref = {reference}"
+    );
+    let said = String::from_utf8_lossy(&out.stdout) + String::from_utf8_lossy(&out.stderr);
+    assert!(
+        said.contains(&format!("last trusted state (t = {trusted:.4}")),
+        "{said}"
+    );
+}
+
 fn interrupt_mid_run(signal: &str) {
     let dir = Scratch::new(&format!("signal-{signal}"));
     let (rrd, json) = (dir.path("i.rrd"), dir.path("i.json"));

@@ -70,7 +70,7 @@ fn three_shards_merged_give_the_rows_and_findings_of_one_whole_run() {
     let merged = study::execute_merge(&dirs, &root.join("merged"), "the command").unwrap();
     let rows = |rows: &[Row]| rows.iter().map(measured).collect::<Vec<_>>();
     assert_eq!(rows(&merged.rows), rows(&whole.rows));
-    assert_eq!(merged.rows.len(), 3 * 3 * 2);
+    assert_eq!(merged.rows.len(), MethodKind::ALL.len() * 3 * 2);
     // The findings, with the whole run's CPU times in the merged rows (the rest is measured).
     let mut with_whole_cpu = merged.rows.clone();
     for (m, w) in with_whole_cpu.iter_mut().zip(&whole.rows) {

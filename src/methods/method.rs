@@ -23,13 +23,36 @@ pub struct Observation {
     pub tension: Vec<f64>,
 }
 
+/// How an adaptive method's own steps went, inside the driver's steps: for the summary.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct StepStatistics {
+    /// Steps taken (each a length of its own, the driver's steps split where the state asks).
+    pub steps: u64,
+    /// The shortest step taken.
+    pub smallest_step: f64,
+    /// The largest |θ̇| at the start of a step: what made the steps shrink.
+    pub fastest_rotation: f64,
+    /// Steps whose Newton failed and that were retaken at half the length.
+    pub newton_failures: u64,
+    /// Linear solves of Newton, in all.
+    pub solves: u64,
+    /// Kinetic energy the velocity projections removed and the rescale put back, summed.
+    pub restored_energy: f64,
+    /// The scheme's own energy error from round-off between projections, which the rescale
+    /// took back too, summed in absolute value.
+    pub roundoff_energy: f64,
+    /// Energy left unrestored where the string was too nearly at rest to rescale its
+    /// velocities, summed in absolute value.
+    pub unrestored_energy: f64,
+}
+
 /// A numerical method advancing the string in time. Pure: state in, state out, no I/O.
 pub trait Method: Send {
     /// What the method says of itself.
     fn descriptor(&self) -> &'static Descriptor;
     /// Number of segments N.
     fn segments(&self) -> usize;
-    /// Time step k.
+    /// Time step k of the driver (for a method that splits it, its largest step).
     fn dt(&self) -> f64;
     /// Simulated time reached: steps × k (every step has the same length).
     fn time(&self) -> f64 {
@@ -49,6 +72,17 @@ pub trait Method: Send {
     /// together by constraints it solves for (it must stay at round-off); `None` for a
     /// method whose string cannot come apart by construction.
     fn constraint_residual(&self) -> Option<f64> {
+        None
+    }
+    /// |G v|, the largest relative velocity of a joint's two sides, for a method whose
+    /// velocities can leave the constraints between projections (before its latest
+    /// projection); `None` where they cannot.
+    fn velocity_residual(&self) -> Option<f64> {
+        None
+    }
+    /// How the method's own steps went, for a method that chooses them; `None` for a method
+    /// of fixed steps (or integer substeps).
+    fn step_statistics(&self) -> Option<StepStatistics> {
         None
     }
     /// Fills `out` with the state now (tension freshly solved for the current time).

@@ -5,6 +5,8 @@
 //! * [`seed`]: the report's finite-difference scheme, first order in h;
 //! * [`chain`]: a chain of rigid rods with RK4, second order in h;
 //! * [`rattle`]: the same chain in maximal coordinates with RATTLE: symplectic, bounded energy;
+//! * [`midpoint`]: the same chain and coordinates with an energy–momentum midpoint rule: the
+//!   energy kept exactly whatever the steps, which follow the motion;
 //! * [`registry`]: the methods a run can choose by name ([`MethodKind`]), each mapped to its
 //!   descriptor, and the report's own setting;
 //! * [`error_model`] and [`tolerance`]: how accurate a method is at N segments, and the rule
@@ -21,11 +23,14 @@ pub(crate) mod constraint_matrix;
 pub mod error_model;
 pub(crate) mod joint_forces;
 pub mod method;
+pub mod midpoint;
 pub mod rattle;
 pub mod registry;
 pub mod seed;
 pub mod tolerance;
 pub mod tridiagonal;
 
-pub use method::{Descriptor, Method, Observation, TENSION_MAX, round_down_nicely, stability_hint};
+pub use method::{
+    Descriptor, Method, Observation, StepStatistics, TENSION_MAX, round_down_nicely, stability_hint,
+};
 pub use registry::{MethodKind, REPORT, ReportSetting};

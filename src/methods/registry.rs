@@ -2,7 +2,7 @@
 //! crate asks a [`MethodKind`] for its [`Descriptor`] and never matches on the method.
 
 use super::method::{Descriptor, Method};
-use super::{chain, rattle, seed};
+use super::{chain, midpoint, rattle, seed};
 use crate::error::ConfigError;
 use crate::model::Scene;
 
@@ -22,11 +22,20 @@ pub enum MethodKind {
     /// in k, symplectic and time-reversible (no energy drift between the violent snaps of a
     /// long chaotic swing), starts from the horizontal.
     Rattle,
+    /// The same chain of rods, an energy–momentum (discrete-gradient) midpoint rule in time:
+    /// second order in h and in k, the energy kept exactly whatever the sequence of steps, so
+    /// its steps shrink where the free end whips and grow again; starts from the horizontal.
+    Midpoint,
 }
 
 impl MethodKind {
     /// Every method, in the order charts list them.
-    pub const ALL: [MethodKind; 3] = [MethodKind::Seed, MethodKind::Chain, MethodKind::Rattle];
+    pub const ALL: [MethodKind; 4] = [
+        MethodKind::Seed,
+        MethodKind::Chain,
+        MethodKind::Rattle,
+        MethodKind::Midpoint,
+    ];
 
     /// The method of a finite run when none is named: the report's.
     pub const DEFAULT: MethodKind = MethodKind::Seed;
@@ -45,6 +54,7 @@ impl MethodKind {
             Self::Seed => &seed::DESCRIPTOR,
             Self::Chain => &chain::DESCRIPTOR,
             Self::Rattle => &rattle::DESCRIPTOR,
+            Self::Midpoint => &midpoint::DESCRIPTOR,
         }
     }
 

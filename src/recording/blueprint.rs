@@ -70,7 +70,9 @@ fn diagnostics() -> Tabs {
         ContainerLike::from(series_view("Support tension F_0", path::SUPPORT_TENSION)),
         series_view("Tip speed", path::TIP_SPEED).into(),
         series_view("Tip acceleration", path::TIP_ACCELERATION).into(),
-        series_view("Joint gap (rattle)", path::CONSTRAINT_RESIDUAL).into(),
+        TimeSeriesView::new("Joints (rattle, midpoint)")
+            .with_origin("constraint")
+            .into(),
         TextLogView::new("Events").with_origin(path::EVENTS).into(),
         TextDocumentView::new("Parameters")
             .with_origin(path::PARAMETERS)

@@ -35,6 +35,7 @@ pub mod path {
     pub const TIP_SPEED: &str = "tip/speed";
     pub const TIP_ACCELERATION: &str = "tip/acceleration";
     pub const CONSTRAINT_RESIDUAL: &str = "constraint/residual";
+    pub const VELOCITY_RESIDUAL: &str = "constraint/velocity_residual";
     pub const TIP_ESTIMATE: &str = "error/tip_estimate";
     pub const SHAPE_ESTIMATE: &str = "error/shape_estimate";
     pub const TOLERANCE: &str = "error/tolerance";
@@ -51,7 +52,7 @@ pub const STEP: &str = "step";
 type Series = (&'static str, &'static str, [u8; 3], fn(&Frame) -> f64);
 
 /// Every time series the recording carries, styled once and filled by each batch.
-const SERIES: [Series; 10] = [
+const SERIES: [Series; 11] = [
     (path::KINETIC, "kinetic", [230, 120, 30], |f| {
         f.energy.kinetic()
     }),
@@ -80,6 +81,13 @@ const SERIES: [Series; 10] = [
         "max |g_j|",
         [150, 150, 150],
         |f| f.constraint_residual.unwrap_or(f64::NAN),
+    ),
+    // Only a method whose velocities leave the joints between projections has this.
+    (
+        path::VELOCITY_RESIDUAL,
+        "max |G v| before projection",
+        [90, 40, 160],
+        |f| f.velocity_residual.unwrap_or(f64::NAN),
     ),
     // A run with a shadow has these at the frames it shares with it.
     (

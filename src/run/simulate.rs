@@ -5,7 +5,7 @@
 use super::estimate::{ErrorEstimate, STRIDE, Shadow};
 pub use super::trust::{ENERGY_BLOWUP, REFERENCE_STEP, TENSION_BLOWUP, reference_energy};
 use crate::error::Diverged;
-use crate::methods::{Method, Observation, stability_hint};
+use crate::methods::{Method, Observation, StepStatistics, stability_hint};
 use crate::model::geometry::{self, Energy, Point};
 use nalgebra::Vector2;
 use std::ops::ControlFlow;
@@ -60,6 +60,9 @@ pub struct Frame {
     /// The largest joint gap, for a method that solves for its joints (see
     /// [`Method::constraint_residual`]).
     pub constraint_residual: Option<f64>,
+    /// |G v| before the latest velocity projection, for a method whose velocities can leave
+    /// the constraints between projections (see [`Method::velocity_residual`]).
+    pub velocity_residual: Option<f64>,
     /// Richardson's estimate of this frame's error, for a run with a shadow at an instant the
     /// shadow shares.
     pub error_estimate: Option<ErrorEstimate>,
@@ -88,11 +91,20 @@ pub struct Outcome {
     /// Largest |E − E_ref| seen after the reference step.
     pub max_abs_deviation: f64,
     pub frames: u64,
-    /// Tip position at the last state reached.
+    /// Tip position at the last trusted state: the end of the run, or for a run that
+    /// diverged the last state that passed the divergence checks ([`Outcome::trusted`]).
     pub tip: Point,
+    /// Support tension at the same state.
     pub support_tension: f64,
+    /// The step and time of the state that `energy_final`, `tip` and `support_tension`
+    /// describe: the last one reached, or the last that passed the checks before a divergence.
+    pub trusted: (u64, f64),
     /// The largest joint gap seen, for a method that solves for its joints.
     pub max_constraint_residual: Option<f64>,
+    /// The largest |G v| seen, for a method that projects its velocities.
+    pub max_velocity_residual: Option<f64>,
+    /// How the method's own steps went, for a method that chooses them.
+    pub step_statistics: Option<StepStatistics>,
     /// What the live error estimate said, for a run with a shadow.
     pub estimate: Option<EstimateOutcome>,
     /// When the tip estimate first passed the tolerance, if it did.
@@ -142,6 +154,7 @@ pub fn frame(
         ),
         support_tension: obs.tension.first().copied().unwrap_or(0.0),
         constraint_residual: method.constraint_residual(),
+        velocity_residual: method.velocity_residual(),
         error_estimate: None,
         tolerance_exceeded: false,
     }
@@ -191,15 +204,21 @@ pub fn run_watched(
         energy_final: method.energy().total(),
         max_abs_deviation: 0.0,
         frames: 0,
-        tip: Point::origin(),
+        tip: geometry::tip(method.angles()),
         support_tension: method.support_tension(),
+        trusted: (method.steps(), method.time()),
         max_constraint_residual: method.constraint_residual(),
+        max_velocity_residual: method.velocity_residual(),
+        step_statistics: method.step_statistics(),
         estimate: estimating.as_ref().map(|_| EstimateOutcome::default()),
         tolerance_exceeded_at: None,
         diverged: None,
         cancelled: false,
     };
     let mut obs = Observation::default();
+    // The shape at the last state that passed the checks: what a diverged run's summary
+    // describes (its energy and support tension are in `outcome` as of that state).
+    let mut trusted_angles = method.angles().to_vec();
     let logging = options.log_rate > 0.0;
     let mut next_frame = 0;
     loop {
@@ -233,6 +252,7 @@ pub fn run_watched(
                 outcome.diverged = Some(d);
                 break;
             }
+            trusted_angles.copy_from_slice(method.angles());
             if stop.is_some_and(|s| s.load(Ordering::Relaxed)) {
                 outcome.cancelled = true;
                 break;
@@ -241,11 +261,15 @@ pub fn run_watched(
     }
     outcome.steps = method.steps();
     outcome.time = method.time();
+    outcome.step_statistics = method.step_statistics();
     if outcome.diverged.is_none() {
         outcome.energy_final = method.energy().total();
         method.observe(&mut obs);
         outcome.tip = geometry::tip(&obs.angle);
         outcome.support_tension = obs.tension.first().copied().unwrap_or(0.0);
+        outcome.trusted = (outcome.steps, outcome.time);
+    } else {
+        outcome.tip = geometry::tip(&trusted_angles);
     }
     outcome
 }
@@ -330,5 +354,12 @@ fn watch(method: &dyn Method, energy_reference: f64, outcome: &mut Outcome) -> O
     if judged {
         outcome.max_abs_deviation = outcome.max_abs_deviation.max(deviation);
     }
+    if let Some(residual) = method.velocity_residual() {
+        let largest = outcome.max_velocity_residual.unwrap_or(0.0);
+        outcome.max_velocity_residual = Some(largest.max(residual));
+    }
+    outcome.energy_final = energy;
+    outcome.support_tension = support;
+    outcome.trusted = (step, method.time());
     None
 }

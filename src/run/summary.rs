@@ -5,7 +5,7 @@ use super::config::RunPlan;
 use super::estimate::Shadow;
 use super::simulate::{EstimateOutcome, Outcome, REFERENCE_STEP};
 use crate::error::Diverged;
-use crate::methods::MethodKind;
+use crate::methods::{MethodKind, StepStatistics};
 use crate::model::analysis;
 use crate::model::{Point, Scene};
 use serde::Serialize;
@@ -50,6 +50,13 @@ pub struct EnergySummary {
     pub max_rel_deviation: f64,
 }
 
+/// The step and time of the state a summary describes.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct Trusted {
+    pub step: u64,
+    pub time: f64,
+}
+
 /// A position in the plane (x away from the support, y down).
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct Xy {
@@ -75,12 +82,24 @@ pub struct Summary {
     pub wall_seconds: f64,
     pub ns_per_segment_step: f64,
     pub frames_logged: u64,
+    /// `final` is the energy of the last trusted state (see `trusted`).
     pub energy: EnergySummary,
+    /// The state that `energy.final`, `tip` and `support_tension` describe: the end of the
+    /// run, or, for a run that diverged, the last state that passed the divergence checks
+    /// (the diverged values themselves are only in `diverged.reason`).
+    pub trusted: Trusted,
     pub tip: Xy,
     pub support_tension: f64,
-    /// The largest joint gap |g_j| seen, for a method that solves for its joints (`rattle`):
-    /// how far the rods came apart, at round-off when all is well.
+    /// The largest joint gap |g_j| seen, for a method that solves for its joints (`rattle`,
+    /// `midpoint`): how far the rods came apart, at round-off when all is well.
     pub constraint_residual: Option<f64>,
+    /// The largest |G v| seen before a velocity projection, for a method whose velocities
+    /// leave the constraints between projections (`midpoint`).
+    pub velocity_residual: Option<f64>,
+    /// How the method's own steps went, for a method that chooses them (`midpoint`): how
+    /// many, the shortest, the fastest rod, Newton's failures and solves, and the kinetic
+    /// energy the velocity projections removed and put back.
+    pub step_statistics: Option<StepStatistics>,
     /// The live error estimate (Richardson against the shadow at N/2): its largest and final
     /// tip values, its largest shape value; absent for a run without a shadow.
     pub error_estimate: Option<EstimateOutcome>,
@@ -145,12 +164,18 @@ impl Summary {
                 max_abs_deviation: outcome.max_abs_deviation,
                 max_rel_deviation: outcome.max_rel_deviation(),
             },
+            trusted: Trusted {
+                step: outcome.trusted.0,
+                time: outcome.trusted.1,
+            },
             tip: Xy {
                 x: outcome.tip.x,
                 y: outcome.tip.y,
             },
             support_tension: outcome.support_tension,
             constraint_residual: outcome.max_constraint_residual,
+            velocity_residual: outcome.max_velocity_residual,
+            step_statistics: outcome.step_statistics,
             error_estimate: outcome.estimate.clone(),
             tolerance: plan.tolerance,
             tolerance_met: tolerance_met(plan, outcome),
@@ -177,19 +202,52 @@ impl Summary {
             steps = self.steps,
             t = self.steps as f64 * self.dt,
         );
+        let last = if self.status == Status::Diverged {
+            format!(
+                "last trusted state (t = {:.4}, step {})",
+                self.trusted.time, self.trusted.step
+            )
+        } else {
+            "final".to_owned()
+        };
         text += &format!(
-            "  energy: E_ref = {:.6} (after step {REFERENCE_STEP}), final {:.6}, max deviation {:.3e} ({:.3e} relative)\n",
-            self.energy.reference,
-            self.energy.r#final,
+            "  energy: E_ref = {} (after step {REFERENCE_STEP}), {last} {}, max deviation {:.3e} ({:.3e} relative)\n",
+            fixed(self.energy.reference),
+            fixed(self.energy.r#final),
             self.energy.max_abs_deviation,
             self.energy.max_rel_deviation
         );
+        let at = if self.status == Status::Diverged {
+            " (last trusted state)"
+        } else {
+            ""
+        };
         text += &format!(
-            "  tip at ({:.5}, {:.5}), support tension F_0 = {:.4}\n",
+            "  tip at ({:.5}, {:.5}), support tension F_0 = {:.4}{at}\n",
             self.tip.x, self.tip.y, self.support_tension
         );
         if let Some(residual) = self.constraint_residual {
-            text += &format!("  joints closed to {residual:.1e} at worst (largest |g_j|)\n");
+            text += &format!("  joints closed to {residual:.1e} at worst (largest |g_j|)");
+            if let Some(velocity) = self.velocity_residual {
+                text += &format!(", joint velocities to {velocity:.1e} before projection (|G v|)");
+            }
+            text += "\n";
+        }
+        if let Some(s) = &self.step_statistics {
+            text += &format!(
+                "  own steps: {} (shortest {:.2e}; fastest rod {:.1} rad per time unit), {:.2} solves per step; {}; kinetic energy put back after projections {:.1e}\n",
+                s.steps,
+                s.smallest_step,
+                s.fastest_rotation,
+                s.solves as f64 / s.steps.max(1) as f64,
+                match s.newton_failures {
+                    0 => "Newton never failed".to_owned(),
+                    n => format!(
+                        "Newton failed {n} times, each time retaking its step at half the length"
+                    ),
+                },
+                s.restored_energy,
+            );
         }
         if let Some(e) = &self.error_estimate {
             text += &format!(
@@ -229,6 +287,20 @@ impl Summary {
             "  {:.3} s wall, {:.1} ns per segment-step, {} frames logged",
             self.wall_seconds, self.ns_per_segment_step, self.frames_logged
         );
+        text
+    }
+}
+
+/// An energy with six decimals, without a "−0.000000" for a value that rounds to zero.
+fn fixed(value: f64) -> String {
+    let text = format!("{value:.6}");
+    if text
+        .trim_start_matches('-')
+        .chars()
+        .all(|c| c == '0' || c == '.')
+    {
+        text.trim_start_matches('-').to_owned()
+    } else {
         text
     }
 }

@@ -5,7 +5,7 @@
 //! (for `rattle`), and where a method diverged.
 
 use crate::error::Diverged;
-use crate::methods::{MethodKind, REPORT};
+use crate::methods::{MethodKind, REPORT, StepStatistics};
 use crate::model::Scene;
 use crate::run::simulate::{self, Options};
 use std::ops::ControlFlow;
@@ -48,6 +48,8 @@ pub struct LongRun {
     /// The fastest the tip moved at any frame: how hard the free end whips.
     pub max_tip_speed: f64,
     pub max_constraint_residual: Option<f64>,
+    /// How the method's own steps went, for a method that chooses them.
+    pub step_statistics: Option<StepStatistics>,
     pub diverged: Option<Diverged>,
     /// Wall time of the run (the runs share the machine's cores, one each).
     pub wall_seconds: f64,
@@ -176,6 +178,7 @@ pub fn run(
         first_past_bound,
         max_tip_speed,
         max_constraint_residual: outcome.max_constraint_residual,
+        step_statistics: outcome.step_statistics,
         diverged: outcome.diverged,
         wall_seconds: wall.elapsed().as_secs_f64(),
     })
@@ -211,6 +214,31 @@ pub fn markdown(runs: &[LongRun], duration: f64, command: &str) -> String {
             )),
             r.wall_seconds
         );
+    }
+    let adaptive: Vec<_> = runs
+        .iter()
+        .filter_map(|r| r.step_statistics.map(|s| (r, s)))
+        .collect();
+    if !adaptive.is_empty() {
+        text += "\nThe steps of a method that chooses its own, and the kinetic energy its velocity \
+                 projections removed and its rescale put back (see `docs/physics.md`):\n\n\
+                 | method | scene | own steps | shortest | fastest rod (rad per unit) | Newton failures | solves per step | put back after projections | round-off taken back | not restored |\n\
+                 |---|---|---|---|---|---|---|---|---|---|\n";
+        for (r, s) in adaptive {
+            text += &format!(
+                "| {} | {} | {} | {:.2e} | {:.0} | {} | {:.2} | {:.2e} | {:.1e} | {:.1e} |\n",
+                r.method,
+                r.scene,
+                s.steps,
+                s.smallest_step,
+                s.fastest_rotation,
+                s.newton_failures,
+                s.solves as f64 / s.steps.max(1) as f64,
+                s.restored_energy,
+                s.roundoff_energy,
+                s.unrestored_energy,
+            );
+        }
     }
     text
 }

@@ -1,0 +1,684 @@
+//! The energy–momentum midpoint rule on the chain of N uniform rigid rods: the same model and
+//! coordinates as `rattle` (so second order in h), stepped by a discrete-gradient scheme whose
+//! energy is kept exactly, whatever the sequence of step lengths. Its steps can then shrink at
+//! a snap of the free end and grow again, at no price in energy.
+//!
+//! **Coordinates.** Rod centres c_i and angles θ_i, velocities v_i and rates ω_i; M =
+//! diag(h, h, h³/12) per rod, gravity f = (0, h) per rod (y down), the joint gaps g_j of
+//! `rattle` (`constraint_matrix.rs`).
+//!
+//! **A step of length k** (Gonzalez 1999; Betsch 2005):
+//! * (q₁ − q₀)/k = (v₀ + v₁)/2,
+//! * M (v₁ − v₀)/k = f − Ḡᵀ λ,
+//! * g(q₁) = 0,
+//!
+//! with Ḡ the discrete gradient of g: Ḡ (q₁ − q₀) = g(q₁) − g(q₀) exactly. Its centre columns
+//! are the constant ±I; rod i's angular column is (h/2) b_i with b_i = sinc(Δθ_i/2) n(θ_i +
+//! Δθ_i/2), because e(θ₁) − e(θ₀) = 2 sin(Δθ/2) n(θ_mid). Then ΔT = v̄ᵀ M Δv = Δqᵀ(f − Ḡᵀλ) =
+//! −ΔV − λᵀ(g(q₁) − g(q₀)) = −ΔV: the energy is kept to the Newton tolerance and round-off.
+//!
+//! **Solving it.** With μ = k²λ/2 the centres follow from μ linearly, Δc_i = k v_i + (k²/2) ĝ
+//! + (μ_i − μ_{i+1})/h, and Newton runs on (Δθ, μ) together: the Δθ-block of its Jacobian is
+//! diagonal, and the Schur complement in μ is block-tridiagonal with 2×2 blocks, `rattle`'s
+//! pattern but not symmetric (W_i = 3 a_i b_iᵀ / d_i in place of 3 n_i n_iᵀ, a_i = n(θ_i¹)).
+//! One forward pass evaluates the residuals and eliminates; one backward pass solves and
+//! updates. The state carries increments: v₁ = 2Δq/k − v₀ from the solved Δq, never from
+//! differences of absolute positions (whose round-off would become 1e-16/k velocity noise).
+//!
+//! **The velocity constraint.** The scheme holds G v = 0 only on average, Ḡ (v₀ + v₁) = 0; at
+//! the nodes G(q)v is an undamped (−1)ⁿ mode, and the energy of the motion the joints allow
+//! would drift from the kept energy. So the steps go in pairs, and after each pair the
+//! velocities are projected M-orthogonally onto G(q)v = 0 (over a pair the mode nearly
+//! cancels, so the projection removes little), then scaled so that the energy is the starting
+//! energy again: what the projection removed and the round-off since the last projection go
+//! back, and are counted ([`StepStatistics`]). docs/physics.md says what this does.
+//!
+//! **Steps that follow the motion.** A step of the driver (k_max, `--dt`) is split into an
+//! even number of equal steps no longer than [`ROTATION`] · min(1, k_max/k_default) / max|θ̇|,
+//! a smooth function of the state, the rest of the driver's step shared equally among the
+//! steps it still needs, so that the last lands exactly on the driver's time; in the calm a
+//! driver step is one pair. A Newton that fails retakes its step at half the length
+//! (counted); past [`MIN_STEP_FRACTION`] of k_max the run has diverged.
+
+use super::constraint_matrix::ConstraintMatrix;
+use super::error_model::ErrorModel;
+use super::joint_forces::ForceSolver;
+use super::method::{self, Descriptor, Method, Observation, StepStatistics};
+use crate::error::{ConfigError, Diverged};
+use crate::model::Scene;
+use crate::model::geometry::{self, Energy};
+use nalgebra::{Matrix2, Vector2};
+
+/// C of the estimate k = C h / sqrt(F_max) past which steps are split to follow the state;
+/// the method never blows up past it, it pays for the extra steps.
+const COURANT: f64 = 0.4;
+/// Largest rotation of a rod per step, k · max|θ̇|, at the default step and above; a finer
+/// `--dt` tightens it in proportion, so that a finer step refines the whip too.
+pub const ROTATION: f64 = 0.05;
+
+/// Newton stops when its last correction moved no angle by more than this (radians) and no
+/// joint by more than this (string lengths): quadratic convergence leaves about its square.
+const CORRECTION: f64 = 1e-10;
+/// Newton refreshes its Jacobian until its correction falls below this; after, it keeps it.
+const REFRESH: f64 = 1e-6;
+/// Newton iterations before a step counts as failed.
+const MAX_ITERATIONS: usize = 12;
+/// The shortest step, as a fraction of the driver's, before a failing Newton is a divergence.
+pub const MIN_STEP_FRACTION: f64 = 1.0 / 1_048_576.0; // 2^-20
+/// The largest relative change of the kinetic energy the rescale may make; beyond it (a
+/// string all but at rest) the energy is left as the projection made it, and the difference
+/// counted as not restored.
+const RESCALE_LIMIT: f64 = 1e-2;
+
+/// What the midpoint rule says of itself (see [`Descriptor`]).
+pub const DESCRIPTOR: Descriptor = Descriptor {
+    name: "midpoint",
+    // One rod is a rigid pendulum, two already bend.
+    min_segments: 2,
+    courant: COURANT,
+    limit_meaning: "steps shrink past about k = C h / sqrt(F_max)",
+    // Two fifths of the limit (1e-3 at N = 100): a pair of steps of 5e-4, `rattle`'s step.
+    default_step_fraction: 0.4,
+    refuses_unstable_step: false,
+    // A pair of steps and its projection (`cargo bench --bench step`, N = 1000).
+    ns_per_segment_step: 376.0,
+    // The state (centre, angle, tangent, velocity, rate: 64), Newton's unknowns and guesses
+    // (Δθ, μ, two past μ/k²: 56), its per-rod and per-joint blocks (slope, F, U, gap, y,
+    // pivot, gain: 176), A's factorisation for the projection (112) and its output (24), the
+    // observer's joint-force solve (96).
+    bytes_per_segment: 64 + 56 + 176 + 112 + 24 + 96,
+    order_in_h: 2,
+    error_model: ErrorModel {
+        constant: 0.461,
+        order: 1.00,
+        safety: 1.08,
+    },
+    colours: ([200, 170, 240], [90, 40, 160]),
+    build: |scene, segments, dt| Ok(Box::new(Midpoint::new(scene, segments, dt)?)),
+};
+
+/// sin x, cos x, sinc x = sin x / x and its derivative, by series where |x| is small (their
+/// truncation is below round-off there) and by the library elsewhere.
+#[inline(always)]
+fn half_angle(x: f64) -> (f64, f64, f64, f64) {
+    if x.abs() < 0.1 {
+        let x2 = x * x;
+        let sinc = 1.0 - x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0 * (1.0 - x2 / 72.0)));
+        let cos = 1.0
+            - x2 / 2.0
+                * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0 * (1.0 - x2 / 56.0 * (1.0 - x2 / 90.0))));
+        let dsinc = x * (-1.0 / 3.0 + x2 * (1.0 / 30.0 - x2 * (1.0 / 840.0 - x2 / 45_360.0)));
+        (x * sinc, cos, sinc, dsinc)
+    } else {
+        let (s, c) = x.sin_cos();
+        let sinc = s / x;
+        (s, c, sinc, (c - sinc) / x)
+    }
+}
+
+/// The normal n(θ) = (−sin θ, cos θ) of a rod with tangent t = (cos θ, sin θ).
+#[inline]
+fn normal(t: Vector2<f64>) -> Vector2<f64> {
+    Vector2::new(-t.y, t.x)
+}
+
+/// One rod's turn Δθ over a step, and what the discrete gradient needs of it.
+#[derive(Clone, Copy, Debug, Default)]
+struct Turn {
+    /// b = sinc(Δθ/2) n(θ + Δθ/2): the angular column of Ḡ, over h/2.
+    b: Vector2<f64>,
+    /// e(θ + Δθ) − e(θ) = Δθ b = 2 sin(Δθ/2) n(θ + Δθ/2).
+    chord: Vector2<f64>,
+    /// d(Δθ b)/dΔθ = n(θ + Δθ).
+    a: Vector2<f64>,
+    /// db/dΔθ.
+    db: Vector2<f64>,
+}
+
+impl Turn {
+    #[inline(always)]
+    fn of(tangent: Vector2<f64>, turn: f64) -> Self {
+        let half = 0.5 * turn;
+        let (s, c, sinc, dsinc) = half_angle(half);
+        let n0 = normal(tangent);
+        let t_mid = c * tangent + s * n0;
+        let n_mid = c * n0 - s * tangent;
+        Self {
+            b: sinc * n_mid,
+            chord: 2.0 * s * n_mid,
+            a: c * n_mid - s * t_mid,
+            db: 0.5 * (dsinc * n_mid - sinc * t_mid),
+        }
+    }
+
+    /// b and the chord alone (what the residuals need).
+    #[inline(always)]
+    fn lean(tangent: Vector2<f64>, turn: f64) -> (Vector2<f64>, Vector2<f64>) {
+        let half = 0.5 * turn;
+        let (s, c, sinc, _) = half_angle(half);
+        let n_mid = c * normal(tangent) - s * tangent;
+        (sinc * n_mid, 2.0 * s * n_mid)
+    }
+}
+
+/// The inverse of a 2×2 matrix (NaN where it is singular or not finite, which Newton's
+/// correction then shows).
+#[inline(always)]
+fn inverse(m: Matrix2<f64>) -> Matrix2<f64> {
+    let det = m.m11 * m.m22 - m.m12 * m.m21;
+    let inv = 1.0 / det;
+    Matrix2::new(m.m22 * inv, -m.m12 * inv, -m.m21 * inv, m.m11 * inv)
+}
+
+/// What Newton's Jacobian keeps of a rod between refreshes: a_i / d_i, b_i and 1 / d_i.
+#[derive(Clone, Copy, Debug, Default)]
+struct Slope {
+    a_over_d: Vector2<f64>,
+    b: Vector2<f64>,
+    inv_d: f64,
+}
+
+/// The midpoint rule's state and scratch.
+#[derive(Clone, Debug)]
+pub struct Midpoint {
+    h: f64,
+    /// The driver's step k_max.
+    k: f64,
+    /// The largest rotation of a rod per step (see the module's step control).
+    rotation: f64,
+    steps: u64,
+    /// Rod centres c_i, angles θ_i, unit tangents e(θ_i), velocities v_i, rates ω_i.
+    centre: Vec<Vector2<f64>>,
+    angle: Vec<f64>,
+    tangent: Vec<Vector2<f64>>,
+    velocity: Vec<Vector2<f64>>,
+    rate: Vec<f64>,
+    /// Newton's unknowns: the turns Δθ_i and μ_j = k² λ_j / 2.
+    turn: Vec<f64>,
+    multiplier: Vec<Vector2<f64>>,
+    /// μ/k² of the last two steps taken, and their lengths: the next step's guess
+    /// extrapolates them to its own middle.
+    recent: Vec<Vector2<f64>>,
+    older: Vec<Vector2<f64>>,
+    recent_step: f64,
+    older_step: f64,
+    /// Per rod in Newton: the Jacobian's a/d, b and 1/d, F_i; per joint: the gap g_j(q₀),
+    /// y_j, and the Schur complement's off-diagonal blocks U_j = W_j − I, inverted pivots and
+    /// gains D'_j⁻¹ U_j (kept from the first iteration of a step: simplified Newton after it).
+    slope: Vec<Slope>,
+    residual_angle: Vec<f64>,
+    upper: Vec<Matrix2<f64>>,
+    gap: Vec<Vector2<f64>>,
+    work: Vec<Vector2<f64>>,
+    pivot: Vec<Matrix2<f64>>,
+    gain: Vec<Matrix2<f64>>,
+    /// A = G M⁻¹ Gᵀ at the end of a driver step, for the velocity projection.
+    projection: ConstraintMatrix,
+    support_tension: f64,
+    /// Largest |g_j| and |G v| (before the projection) at the end of the latest driver step.
+    residual: f64,
+    velocity_residual: f64,
+    statistics: StepStatistics,
+    /// The energy at the start, which the rescale after each projection restores.
+    energy_start: f64,
+    observer: ForceSolver,
+    /// Steps since the state's velocities were last projected.
+    since_projection: u64,
+    /// The projection's output, swapped with the state's velocities.
+    projected_velocity: Vec<Vector2<f64>>,
+    projected_rate: Vec<f64>,
+}
+
+impl Midpoint {
+    /// The midpoint rule at rest in `scene`, with driver step (largest step) `dt`.
+    pub fn new(scene: &Scene, segments: usize, dt: f64) -> Result<Self, ConfigError> {
+        scene.validate()?;
+        method::validate_segments(&DESCRIPTOR, segments)?;
+        method::validate_dt(dt)?;
+        let n = segments;
+        let angle = scene.initial_angles(n);
+        let mut centres = Vec::with_capacity(n);
+        geometry::centres(&angle, &mut centres); // eqs. (14)–(15)
+        let mut midpoint = Self {
+            h: 1.0 / n as f64,
+            k: dt,
+            rotation: ROTATION * DESCRIPTOR.refinement(n, dt),
+            steps: 0,
+            centre: centres.iter().map(|p| p.coords).collect(),
+            tangent: angle
+                .iter()
+                .map(|&theta| geometry::tangent(theta))
+                .collect(),
+            angle,
+            velocity: vec![Vector2::zeros(); n],
+            rate: vec![0.0; n],
+            turn: vec![0.0; n],
+            multiplier: vec![Vector2::zeros(); n],
+            recent: vec![Vector2::zeros(); n],
+            older: vec![Vector2::zeros(); n],
+            recent_step: 0.0,
+            older_step: 0.0,
+            slope: vec![Slope::default(); n],
+            upper: vec![Matrix2::zeros(); n],
+            residual_angle: vec![0.0; n],
+            gap: vec![Vector2::zeros(); n],
+            work: vec![Vector2::zeros(); n],
+            pivot: vec![Matrix2::zeros(); n],
+            gain: vec![Matrix2::zeros(); n],
+            projection: ConstraintMatrix::new(n),
+            support_tension: 0.0,
+            residual: 0.0,
+            velocity_residual: 0.0,
+            statistics: StepStatistics {
+                smallest_step: f64::INFINITY,
+                ..StepStatistics::default()
+            },
+            observer: ForceSolver::new(n),
+            energy_start: 0.0,
+            since_projection: 0,
+            projected_velocity: vec![Vector2::zeros(); n],
+            projected_rate: vec![0.0; n],
+        };
+        midpoint.energy_start = midpoint.energy().total();
+        let mut at_rest = Observation::default();
+        midpoint.observe(&mut at_rest);
+        midpoint.support_tension = at_rest.tension.first().copied().unwrap_or(0.0);
+        Ok(midpoint)
+    }
+
+    /// A rod's moment of inertia about its centre, h³/12.
+    fn inertia(&self) -> f64 {
+        self.h * self.h * self.h / 12.0
+    }
+
+    /// The fastest spin of a rod, max|θ̇_i|.
+    fn fastest_spin(&self) -> f64 {
+        self.rate.iter().fold(0.0, |m: f64, w| m.max(w.abs()))
+    }
+
+    /// The step the state asks for: k_max, or shorter where a rod spins fast.
+    fn wanted_step(&self) -> f64 {
+        let spin = self.fastest_spin();
+        if spin * self.k > self.rotation {
+            self.rotation / spin
+        } else {
+            self.k
+        }
+    }
+
+    /// The joint gaps g_j(q) = end(rod j−1) − start(rod j) into `gap`.
+    fn measure_gaps(&mut self) {
+        let half = 0.5 * self.h;
+        let mut end_before = Vector2::zeros(); // the support
+        for j in 0..self.angle.len() {
+            self.gap[j] = end_before - (self.centre[j] - half * self.tangent[j]);
+            end_before = self.centre[j] + half * self.tangent[j];
+        }
+    }
+
+    /// The centre's increment over a step of length `dt` for rod i at multipliers μ.
+    #[inline]
+    fn centre_increment(&self, i: usize, dt: f64) -> Vector2<f64> {
+        let after = self
+            .multiplier
+            .get(i + 1)
+            .copied()
+            .unwrap_or_else(Vector2::zeros);
+        let mut shift = dt * self.velocity[i] + (self.multiplier[i] - after) / self.h;
+        shift.y += 0.5 * dt * dt;
+        shift
+    }
+
+    /// Newton's forward pass: every residual at the current (Δθ, μ), and the elimination of
+    /// the Schur complement S δμ = r (r_j = h R_j − (h²/2) Σ a_i F_i / d_i). With `refresh`
+    /// the Jacobian is evaluated and factorised here; without, the last one serves. Leaves
+    /// y_j in `work`.
+    fn forward(&mut self, dt: f64, refresh: bool) {
+        let (h, half) = (self.h, 0.5 * self.h);
+        let spin_gain = 6.0 / (h * h); // (12/h³)(h/2)
+        let eye = Matrix2::identity();
+        let n = self.angle.len();
+        let mut before_increment = Vector2::zeros(); // rod −1: the support does not move
+        let mut before_chord = Vector2::zeros();
+        let mut before_af = Vector2::zeros(); // a_{j−1} F_{j−1} / d_{j−1}
+        let mut before_y = Vector2::zeros();
+        for j in 0..n {
+            let after = self
+                .multiplier
+                .get(j + 1)
+                .copied()
+                .unwrap_or_else(Vector2::zeros);
+            let m = self.multiplier[j] + after;
+            let (b, chord) = if refresh {
+                let rod = Turn::of(self.tangent[j], self.turn[j]);
+                let inv_d = 1.0 / (1.0 + spin_gain * rod.db.dot(&m));
+                let w = (3.0 * inv_d) * rod.a * rod.b.transpose();
+                // S_jj = 2I + W_{j−1} + W_j = 3I + U_{j−1} + W_j.
+                let mut diag = if j == 0 {
+                    eye + w
+                } else {
+                    3.0 * eye + self.upper[j - 1] + w
+                };
+                if j > 0 {
+                    diag -= self.upper[j - 1] * self.gain[j - 1];
+                }
+                let pivot = inverse(diag);
+                self.upper[j] = w - eye;
+                self.gain[j] = if j + 1 < n {
+                    pivot * self.upper[j]
+                } else {
+                    Matrix2::zeros()
+                };
+                self.pivot[j] = pivot;
+                self.slope[j] = Slope {
+                    a_over_d: inv_d * rod.a,
+                    b: rod.b,
+                    inv_d,
+                };
+                (rod.b, rod.chord)
+            } else {
+                Turn::lean(self.tangent[j], self.turn[j])
+            };
+            let f = self.turn[j] - dt * self.rate[j] + spin_gain * b.dot(&m);
+            let af = f * self.slope[j].a_over_d;
+            let increment = self.centre_increment(j, dt);
+            // R_j = g_j(q₀) + Δc_{j−1} − Δc_j + (h/2)(chord_{j−1} + chord_j).
+            let residual =
+                self.gap[j] + before_increment - increment + half * (before_chord + chord);
+            let mut rhs = h * residual - 0.5 * h * h * (before_af + af);
+            if j > 0 {
+                rhs -= self.upper[j - 1] * before_y;
+            }
+            before_y = self.pivot[j] * rhs;
+            self.work[j] = before_y;
+            self.residual_angle[j] = f;
+            (before_increment, before_chord, before_af) = (increment, chord, af);
+        }
+    }
+
+    /// Newton's backward pass: δμ_j = y_j − gain_j δμ_{j+1}, δθ_i = −(F_i + (6/h²) b_i ·
+    /// (δμ_i + δμ_{i+1})) / d_i, both applied. Returns the largest correction.
+    fn backward(&mut self) -> f64 {
+        let spin_gain = 6.0 / (self.h * self.h);
+        let mut after = Vector2::zeros(); // δμ_{j+1}
+        let mut largest: f64 = 0.0;
+        for j in (0..self.angle.len()).rev() {
+            let delta = self.work[j] - self.gain[j] * after;
+            let slope = self.slope[j];
+            let turn =
+                -(self.residual_angle[j] + spin_gain * slope.b.dot(&(delta + after))) * slope.inv_d;
+            self.multiplier[j] += delta;
+            self.turn[j] += turn;
+            largest = largest.max(turn.abs()).max(delta.amax() / self.h);
+            after = delta;
+        }
+        largest
+    }
+
+    /// One step of length `dt` from the current state; false if Newton did not converge (the
+    /// state is then untouched: Newton moves only Δθ and μ).
+    fn try_step(&mut self, dt: f64) -> bool {
+        let spin_gain = 6.0 / (self.h * self.h);
+        // The guess: μ/k² of the last two steps extrapolated linearly to this step's middle
+        // (each step's λ belongs to its middle), then the turns it implies.
+        let n = self.angle.len();
+        let (k1, k2) = (self.recent_step, self.older_step);
+        // (No further than one step's worth: an extrapolation far past its base guesses worse
+        // than none.)
+        let slope = if k1 > 0.0 && k2 > 0.0 {
+            ((dt + k1) / (k1 + k2)).min(1.0)
+        } else {
+            0.0
+        };
+        for i in 0..n {
+            self.multiplier[i] =
+                dt * dt * (self.recent[i] + slope * (self.recent[i] - self.older[i]));
+        }
+        for i in 0..n {
+            let after = self
+                .multiplier
+                .get(i + 1)
+                .copied()
+                .unwrap_or_else(Vector2::zeros);
+            let m = self.multiplier[i] + after;
+            let free = dt * self.rate[i];
+            self.turn[i] = free - spin_gain * Turn::lean(self.tangent[i], free).0.dot(&m);
+        }
+        self.measure_gaps();
+        let mut converged = false;
+        let mut correction = f64::INFINITY;
+        for _ in 0..MAX_ITERATIONS {
+            // Simplified Newton (the Jacobian of the first iteration) once close.
+            self.forward(dt, correction > REFRESH);
+            correction = self.backward();
+            if !correction.is_finite() {
+                break;
+            }
+            self.statistics.solves += 1;
+            if correction <= CORRECTION {
+                converged = true;
+                break;
+            }
+        }
+        if !converged {
+            // Nothing of the state has moved; the next guess starts afresh.
+            self.recent.iter_mut().for_each(|m| *m = Vector2::zeros());
+            (self.recent_step, self.older_step) = (0.0, 0.0);
+            return false;
+        }
+        // v₁ = 2Δq/k − v₀ from the increments; q₁ = q₀ + Δq.
+        let two_over = 2.0 / dt;
+        for i in 0..n {
+            let increment = self.centre_increment(i, dt);
+            let turn = self.turn[i];
+            let chord = Turn::lean(self.tangent[i], turn).1;
+            self.centre[i] += increment;
+            self.velocity[i] = two_over * increment - self.velocity[i];
+            self.angle[i] += turn;
+            self.tangent[i] += chord;
+            self.rate[i] = two_over * turn - self.rate[i];
+        }
+        // F_0 = −t_0 · f_0, with f_0 = 2μ_0/k² the support's force on rod 0.
+        self.support_tension = -2.0 * self.tangent[0].dot(&self.multiplier[0]) / (dt * dt);
+        std::mem::swap(&mut self.recent, &mut self.older);
+        let per_step = 1.0 / (dt * dt);
+        for (recent, mu) in self.recent.iter_mut().zip(&self.multiplier) {
+            *recent = per_step * mu;
+        }
+        (self.recent_step, self.older_step) = (dt, k1);
+        true
+    }
+
+    /// One step of the scheme of exactly `dt`, neither split nor followed by the velocity
+    /// projection: the bare discrete-gradient map, for checking that it keeps the energy
+    /// whatever the sequence of step lengths. The driver's time does not move.
+    pub fn step_exactly(&mut self, dt: f64) -> Result<(), Diverged> {
+        if self.try_step(dt) {
+            Ok(())
+        } else {
+            Err(self.newton_failed(dt))
+        }
+    }
+
+    /// After a pair of steps: tangents renormalised, the joint gaps measured, the velocities
+    /// projected M-orthogonally onto G(q)v = 0, then scaled so that the energy is the
+    /// starting energy again (see the module's note on the velocity constraint).
+    fn project(&mut self) {
+        let (h, inertia, half) = (self.h, self.inertia(), 0.5 * self.h);
+        let n = self.angle.len();
+        for t in &mut self.tangent {
+            *t *= 1.5 - 0.5 * t.norm_squared(); // one Newton step to |t| = 1
+        }
+        self.measure_gaps();
+        self.residual = self.gap.iter().fold(0.0, |m: f64, g| m.max(g.norm()));
+        self.projection.factorise(&self.tangent);
+        let mut end_before = Vector2::zeros(); // the support does not move
+        let mut largest: f64 = 0.0;
+        for j in 0..n {
+            let w = self.rate[j] * half * self.projection.normal[j];
+            // d/dt g_j = v_end(j−1) − v_start(j); v_start = v − (h/2) θ̇ n, v_end = v + (h/2) θ̇ n.
+            self.work[j] = end_before - (self.velocity[j] - w);
+            largest = largest.max(self.work[j].norm());
+            end_before = self.velocity[j] + w;
+        }
+        self.velocity_residual = largest;
+        self.projection.forward(h, &mut self.work);
+        let mut after = Vector2::zeros(); // ν_{j+1}
+        let (mut before, mut projected) = (0.0, 0.0);
+        for j in (0..n).rev() {
+            let nu = self.work[j] - self.projection.gain[j] * after;
+            let v = self.velocity[j] - (after - nu) / h;
+            let w = self.rate[j] - half * self.projection.normal[j].dot(&(nu + after)) / inertia;
+            before += h * self.velocity[j].norm_squared() + inertia * self.rate[j] * self.rate[j];
+            projected += h * v.norm_squared() + inertia * w * w;
+            self.projected_velocity[j] = v;
+            self.projected_rate[j] = w;
+            after = nu;
+        }
+        // The kinetic energy the kept energy leaves at this configuration: what the
+        // projection removed, and the scheme's round-off since the last projection, go back.
+        let potential: f64 = -h * self.centre.iter().map(|c| c.y).sum::<f64>();
+        let (before, projected) = (0.5 * before, 0.5 * projected);
+        let target = self.energy_start - potential;
+        if projected > 0.0 && (target - projected).abs() <= RESCALE_LIMIT * projected {
+            let scale = (target / projected).sqrt();
+            self.projected_velocity.iter_mut().for_each(|v| *v *= scale);
+            self.projected_rate.iter_mut().for_each(|w| *w *= scale);
+            self.statistics.restored_energy += before - projected;
+            self.statistics.roundoff_energy += (target - before).abs();
+        } else {
+            self.statistics.unrestored_energy += (target - projected).abs();
+        }
+        std::mem::swap(&mut self.velocity, &mut self.projected_velocity);
+        std::mem::swap(&mut self.rate, &mut self.projected_rate);
+        self.since_projection = 0;
+    }
+
+    /// Why a step failed: Newton did not converge even at the shortest step.
+    fn newton_failed(&self, dt: f64) -> Diverged {
+        Diverged {
+            step: self.steps + 1,
+            time: (self.steps + 1) as f64 * self.k,
+            reason: format!(
+                "Newton did not converge even at a step of {dt:.3e} (2^-20 of the largest, \
+                 k = {:.3e}; max|θ̇| = {:.3e})",
+                self.k,
+                self.fastest_spin()
+            ),
+        }
+    }
+}
+
+impl Method for Midpoint {
+    fn descriptor(&self) -> &'static Descriptor {
+        &DESCRIPTOR
+    }
+
+    fn segments(&self) -> usize {
+        self.angle.len()
+    }
+
+    fn dt(&self) -> f64 {
+        self.k
+    }
+
+    fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    fn step(&mut self) -> Result<(), Diverged> {
+        let mut remaining = self.k;
+        let mut ceiling = self.k;
+        while remaining > 0.0 {
+            let spin = self.fastest_spin();
+            self.statistics.fastest_rotation = self.statistics.fastest_rotation.max(spin);
+            // The rest of the driver's step in equal steps no longer than the state wants, in
+            // pairs, each pair followed by the projection; the last step lands on the
+            // driver's time exactly. (After a Newton failure broke a pair, an odd number of
+            // steps, the first alone, completes it.)
+            let wanted = self.wanted_step().min(ceiling);
+            let single = self.since_projection % 2 == 1;
+            let mut parts = (remaining / wanted * (1.0 - 1e-12)).ceil().max(1.0);
+            if (parts % 2.0 == 1.0) != single {
+                parts += 1.0;
+            }
+            let dt = remaining / parts;
+            for _ in 0..if single { 1 } else { 2 } {
+                if !self.try_step(dt) {
+                    self.statistics.newton_failures += 1;
+                    ceiling = 0.5 * dt;
+                    if ceiling < MIN_STEP_FRACTION * self.k {
+                        return Err(self.newton_failed(dt));
+                    }
+                    break;
+                }
+                parts -= 1.0;
+                remaining = if parts < 0.5 { 0.0 } else { remaining - dt };
+                self.since_projection += 1;
+                self.statistics.steps += 1;
+                self.statistics.smallest_step = self.statistics.smallest_step.min(dt);
+            }
+            if self.since_projection > 0 && self.since_projection % 2 == 0 {
+                self.project();
+            }
+        }
+        let check: f64 = self.angle.iter().chain(&self.rate).sum();
+        if !(check.is_finite() && self.support_tension.is_finite()) {
+            return Err(method::non_finite(
+                &DESCRIPTOR,
+                self.segments(),
+                self.k,
+                self.steps,
+                "the angle or the velocity",
+            ));
+        }
+        self.steps += 1;
+        Ok(())
+    }
+
+    /// From the method's own velocities (projected onto the joints at the end of every driver
+    /// step): Σ h|v|²/2 + Σ (h³/12) ω²/2 − Σ h y (eq. 13 summed).
+    fn energy(&self) -> Energy {
+        let (h, inertia) = (self.h, self.inertia());
+        let mut e = Energy::default();
+        for i in 0..self.angle.len() {
+            e.translational += 0.5 * h * self.velocity[i].norm_squared();
+            e.rotational += 0.5 * inertia * self.rate[i] * self.rate[i];
+            e.potential -= h * self.centre[i].y;
+        }
+        e
+    }
+
+    fn support_tension(&self) -> f64 {
+        self.support_tension
+    }
+
+    fn constraint_residual(&self) -> Option<f64> {
+        Some(self.residual)
+    }
+
+    fn velocity_residual(&self) -> Option<f64> {
+        Some(self.velocity_residual)
+    }
+
+    fn step_statistics(&self) -> Option<StepStatistics> {
+        Some(self.statistics)
+    }
+
+    fn angles(&self) -> &[f64] {
+        &self.angle
+    }
+
+    fn observe(&mut self, out: &mut Observation) {
+        out.angle.clone_from(&self.angle);
+        out.angular_velocity.clone_from(&self.rate);
+        out.angular_acceleration.resize(self.rate.len(), 0.0);
+        self.observer
+            .accelerations(&self.angle, &self.rate, &mut out.angular_acceleration);
+        self.observer.tension(&mut out.tension);
+    }
+
+    fn box_clone(&self) -> Box<dyn Method> {
+        Box::new(self.clone())
+    }
+}
