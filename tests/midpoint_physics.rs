@@ -6,52 +6,18 @@ mod common;
 
 use common::*;
 use rope::methods::MethodKind;
-use rope::methods::error_model::ErrorModel;
 use rope::methods::midpoint::Midpoint;
 use rope::methods::{Method, Observation};
 use rope::model::Scene;
 use rope::model::geometry;
-use rope::run::simulate::Frame;
 
 const MIDPOINT: MethodKind = MethodKind::Midpoint;
 const THIRTY: Scene = Scene::Release { angle_deg: 30.0 };
 const HORIZONTAL: Scene = Scene::Release { angle_deg: 0.0 };
-const HANGING: Scene = Scene::Release { angle_deg: 90.0 };
-
-/// The largest joint gap over the frames of a run.
-fn widest_gap(frames: &[Frame]) -> f64 {
-    frames
-        .iter()
-        .map(|f| f.constraint_residual.expect("midpoint reports its joints"))
-        .fold(0.0, f64::max)
-}
 
 #[test]
 fn a_hanging_string_stays_put_with_tension_m_g_times_the_length_below() {
-    let n = 50;
-    let (outcome, frames) = run_frames(MIDPOINT, HANGING, n, MIDPOINT.default_dt(n), 2.0, 10.0);
-    assert!(outcome.diverged.is_none());
-    let last = frames.last().unwrap();
-    for node in &last.nodes {
-        assert!(
-            node.x.abs() < 1e-12,
-            "node moved sideways to x = {}",
-            node.x
-        );
-    }
-    assert!(
-        (last.tip().y - 1.0).abs() < 1e-12,
-        "tip at y = {}",
-        last.tip().y
-    );
-    for (i, &f) in last.tension.iter().enumerate() {
-        let below = 1.0 - (i as f64 + 0.5) / n as f64;
-        assert!(
-            (f - below).abs() < 1e-9,
-            "segment {i}: F = {f}, expected {below}"
-        );
-    }
-    assert!(widest_gap(&frames) < 1e-12);
+    assert_hanging_string_stays_put(MIDPOINT, 50);
 }
 
 #[test]
@@ -82,14 +48,7 @@ fn thirty_degree_release_tip_follows_the_general_free_fall_law() {
 
 #[test]
 fn mode_frequencies_match_bernoulli_within_0_2_percent() {
-    for number in [1, 2] {
-        let exact = rope::model::bessel::mode_frequency(number);
-        let w = mode_angular_frequency(MIDPOINT, number, 100, MIDPOINT.default_dt(100));
-        assert!(
-            (w / exact - 1.0).abs() < 0.002,
-            "mode {number}: ω = {w}, Bernoulli {exact}"
-        );
-    }
+    assert_bernoulli_frequencies(MIDPOINT);
 }
 
 #[test]
@@ -97,6 +56,7 @@ fn tip_position_at_t1_converges_at_second_order_in_h_within_2e_5_at_n_100() {
     let segments = [25, 50, 100, 200];
     let errors = tip_errors_against_richardson(MIDPOINT, &segments);
     let order = fitted_order(&segments, &errors);
+    println!("tip errors at t = 1 for N = {segments:?}: {errors:?}, order {order:.2}");
     assert!(order >= 1.7, "order {order}, errors {errors:?}");
     assert!(errors[2] < 2e-5, "tip error at N = 100: {:.3e}", errors[2]);
     // The same rods as the RK4 chain: the same tip, to well within the spatial error.
@@ -109,17 +69,7 @@ fn tip_position_at_t1_converges_at_second_order_in_h_within_2e_5_at_n_100() {
 
 #[test]
 fn tip_position_at_t_half_converges_at_second_order_in_k() {
-    let n = 40;
-    let tip =
-        |steps_per_unit: usize| run_to(MIDPOINT, THIRTY, n, 1.0 / steps_per_unit as f64, 0.5).tip;
-    let fine = [tip(16_000), tip(32_000)];
-    let converged = fine[1] + (fine[1] - fine[0]) / 3.0;
-    let rates = [250, 500, 1000, 2000];
-    let errors: Vec<(usize, f64)> = rates
-        .iter()
-        .map(|&r| (r, (tip(r) - converged).norm()))
-        .collect();
-    let order = ErrorModel::fit(errors.iter().copied()).unwrap().order;
+    let (order, errors) = order_in_k(MIDPOINT);
     assert!(
         (1.8..2.2).contains(&order),
         "order in k {order}, errors {errors:?}"

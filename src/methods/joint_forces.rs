@@ -3,6 +3,7 @@
 //! blocks, solved by block Thomas in O(N) (the system is written out in `chain.rs`). Used to
 //! step the `chain` method, and to observe the tension of any chain of rods.
 
+use super::method::Observation;
 use nalgebra::{Matrix2, Vector2};
 
 /// Scratch of the joint-force solve, reused every evaluation.
@@ -93,6 +94,18 @@ impl ForceSolver {
     }
 
     /// Tension on each rod: the mean pull of its two joints along it.
+    /// Fills an observation of rods at `angle` turning at `rate`: the angles, rates, angular
+    /// accelerations and tensions the joint forces give there.
+    pub(crate) fn observe(&mut self, angle: &[f64], rate: &[f64], out: &mut Observation) {
+        out.angle.clear();
+        out.angle.extend_from_slice(angle);
+        out.angular_velocity.clear();
+        out.angular_velocity.extend_from_slice(rate);
+        out.angular_acceleration.resize(rate.len(), 0.0);
+        self.accelerations(angle, rate, &mut out.angular_acceleration);
+        self.tension(&mut out.tension);
+    }
+
     pub(crate) fn tension(&self, out: &mut Vec<f64>) {
         let n = self.force.len();
         out.clear();

@@ -156,6 +156,29 @@ pub(crate) fn non_finite(
     }
 }
 
+/// Checks the state a chain of `segments` rods reached after step `steps + 1`: its angles and
+/// rates (`values`) and support tension must be finite, or the step diverged.
+pub(crate) fn check_finite<'a>(
+    method: &Descriptor,
+    segments: usize,
+    dt: f64,
+    steps: u64,
+    mut values: impl Iterator<Item = &'a f64>,
+    support_tension: f64,
+) -> Result<(), Diverged> {
+    if values.all(|v| v.is_finite()) && support_tension.is_finite() {
+        Ok(())
+    } else {
+        Err(non_finite(
+            method,
+            segments,
+            dt,
+            steps,
+            "the angle or the rate",
+        ))
+    }
+}
+
 /// Builds a method at rest in a scene, with N segments and time step k, validating what it
 /// needs.
 pub type Builder = fn(&Scene, usize, f64) -> Result<Box<dyn Method>, ConfigError>;

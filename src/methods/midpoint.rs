@@ -17,8 +17,9 @@
 //! Δθ_i/2), because e(θ₁) − e(θ₀) = 2 sin(Δθ/2) n(θ_mid). Then ΔT = v̄ᵀ M Δv = Δqᵀ(f − Ḡᵀλ) =
 //! −ΔV − λᵀ(g(q₁) − g(q₀)) = −ΔV: the energy is kept to the Newton tolerance and round-off.
 //!
-//! **Solving it.** With μ = k²λ/2 the centres follow from μ linearly, Δc_i = k v_i + (k²/2) ĝ
-//! + (μ_i − μ_{i+1})/h, and Newton runs on (Δθ, μ) together: the Δθ-block of its Jacobian is
+//! **Solving it.** With μ = k²λ/2 the centres follow from μ linearly,
+//! Δc_i = k v_i + (k²/2) ĝ + (μ_i − μ_{i+1})/h, and Newton runs on (Δθ, μ) together: the
+//! Δθ-block of its Jacobian is
 //! diagonal, and the Schur complement in μ is block-tridiagonal with 2×2 blocks, `rattle`'s
 //! pattern but not symmetric (W_i = 3 a_i b_iᵀ / d_i in place of 3 n_i n_iᵀ, a_i = n(θ_i¹)).
 //! One forward pass evaluates the residuals and eliminates; one backward pass solves and
@@ -81,7 +82,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     default_step_fraction: 0.4,
     refuses_unstable_step: false,
     // A pair of steps and its projection (`cargo bench --bench step`, N = 1000).
-    ns_per_segment_step: 376.0,
+    ns_per_segment_step: 348.0,
     // The state (centre, angle, tangent, velocity, rate: 64), Newton's unknowns and guesses
     // (Δθ, μ, two past μ/k²: 56), its per-rod and per-joint blocks (slope, F, U, gap, y,
     // pivot, gain: 176), A's factorisation for the projection (112) and its output (24), the
@@ -597,7 +598,7 @@ impl Method for Midpoint {
             // driver's time exactly. (After a Newton failure broke a pair, an odd number of
             // steps, the first alone, completes it.)
             let wanted = self.wanted_step().min(ceiling);
-            let single = self.since_projection % 2 == 1;
+            let single = !self.since_projection.is_multiple_of(2);
             let mut parts = (remaining / wanted * (1.0 - 1e-12)).ceil().max(1.0);
             if (parts % 2.0 == 1.0) != single {
                 parts += 1.0;
@@ -618,20 +619,20 @@ impl Method for Midpoint {
                 self.statistics.steps += 1;
                 self.statistics.smallest_step = self.statistics.smallest_step.min(dt);
             }
-            if self.since_projection > 0 && self.since_projection % 2 == 0 {
+            if self.since_projection > 0 && self.since_projection.is_multiple_of(2) {
                 self.project();
             }
         }
-        let check: f64 = self.angle.iter().chain(&self.rate).sum();
-        if !(check.is_finite() && self.support_tension.is_finite()) {
-            return Err(method::non_finite(
-                &DESCRIPTOR,
-                self.segments(),
-                self.k,
-                self.steps,
-                "the angle or the velocity",
-            ));
-        }
+        let values = self.angle.iter().chain(&self.rate);
+        let segments = self.segments();
+        method::check_finite(
+            &DESCRIPTOR,
+            segments,
+            self.k,
+            self.steps,
+            values,
+            self.support_tension,
+        )?;
         self.steps += 1;
         Ok(())
     }
@@ -670,12 +671,7 @@ impl Method for Midpoint {
     }
 
     fn observe(&mut self, out: &mut Observation) {
-        out.angle.clone_from(&self.angle);
-        out.angular_velocity.clone_from(&self.rate);
-        out.angular_acceleration.resize(self.rate.len(), 0.0);
-        self.observer
-            .accelerations(&self.angle, &self.rate, &mut out.angular_acceleration);
-        self.observer.tension(&mut out.tension);
+        self.observer.observe(&self.angle, &self.rate, out);
     }
 
     fn box_clone(&self) -> Box<dyn Method> {

@@ -384,16 +384,16 @@ impl Method for Rattle {
                 return Err(self.newton_failed());
             }
         }
-        let check: f64 = self.now.angle.iter().chain(&self.now.spin).sum();
-        if !(check.is_finite() && self.support_tension.is_finite()) {
-            return Err(method::non_finite(
-                &DESCRIPTOR,
-                self.segments(),
-                self.k,
-                self.steps,
-                "the angle or the momentum",
-            ));
-        }
+        let values = self.now.angle.iter().chain(&self.now.spin);
+        let segments = self.segments();
+        method::check_finite(
+            &DESCRIPTOR,
+            segments,
+            self.k,
+            self.steps,
+            values,
+            self.support_tension,
+        )?;
         self.steps += 1;
         Ok(())
     }
@@ -427,12 +427,7 @@ impl Method for Rattle {
         for (rate, spin) in self.rate.iter_mut().zip(&self.now.spin) {
             *rate = spin / inertia;
         }
-        out.angle.clone_from(&self.now.angle);
-        out.angular_velocity.clone_from(&self.rate);
-        out.angular_acceleration.resize(self.rate.len(), 0.0);
-        self.observer
-            .accelerations(&self.now.angle, &self.rate, &mut out.angular_acceleration);
-        self.observer.tension(&mut out.tension);
+        self.observer.observe(&self.now.angle, &self.rate, out);
     }
 
     fn box_clone(&self) -> Box<dyn Method> {

@@ -112,3 +112,71 @@ pub fn mode_angular_frequency(kind: MethodKind, number: u32, segments: usize, dt
     .expect("at least one full period");
     std::f64::consts::TAU / period
 }
+
+/// The hanging string (released at 90°) at `n` segments and the method's default step, after
+/// 2 time units: every node on the vertical, the tip at y = 1, F(s) = m g (1 − s) at the
+/// middle of each rod (docs/physics.md, statics), and the joints closed.
+pub fn assert_hanging_string_stays_put(kind: MethodKind, n: usize) {
+    let hanging = Scene::Release { angle_deg: 90.0 };
+    let (outcome, frames) = run_frames(kind, hanging, n, kind.default_dt(n), 2.0, 10.0);
+    assert!(outcome.diverged.is_none());
+    let last = frames.last().unwrap();
+    for node in &last.nodes {
+        assert!(
+            node.x.abs() < 1e-12,
+            "node moved sideways to x = {}",
+            node.x
+        );
+    }
+    assert!(
+        (last.tip().y - 1.0).abs() < 1e-12,
+        "tip at y = {}",
+        last.tip().y
+    );
+    for (i, &f) in last.tension.iter().enumerate() {
+        let below = 1.0 - (i as f64 + 0.5) / n as f64;
+        assert!(
+            (f - below).abs() < 1e-9,
+            "segment {i}: F = {f}, expected {below}"
+        );
+    }
+    let gap = frames
+        .iter()
+        .map(|f| {
+            f.constraint_residual
+                .expect("the method reports its joints")
+        })
+        .fold(0.0, f64::max);
+    assert!(gap < 1e-12, "the joints opened {gap:.1e}");
+}
+
+/// Modes 1 and 2 at N = 100 and the method's default step swing at Bernoulli's frequencies
+/// within 0.2 %.
+pub fn assert_bernoulli_frequencies(kind: MethodKind) {
+    for number in [1, 2] {
+        let exact = rope::model::bessel::mode_frequency(number);
+        let w = mode_angular_frequency(kind, number, 100, kind.default_dt(100));
+        assert!(
+            (w / exact - 1.0).abs() < 0.002,
+            "mode {number}: ω = {w}, Bernoulli {exact}"
+        );
+    }
+}
+
+/// The order in k of the tip at t = 0.5 of the 30° release at N = 40, from steps of 1/250 to
+/// 1/2000 against Richardson's extrapolation from 1/16000 and 1/32000; and the errors.
+pub fn order_in_k(kind: MethodKind) -> (f64, Vec<(usize, f64)>) {
+    let thirty = Scene::Release { angle_deg: 30.0 };
+    let tip =
+        |steps_per_unit: usize| run_to(kind, thirty, 40, 1.0 / steps_per_unit as f64, 0.5).tip;
+    let fine = [tip(16_000), tip(32_000)];
+    let converged = fine[1] + (fine[1] - fine[0]) / 3.0;
+    let errors: Vec<(usize, f64)> = [250, 500, 1000, 2000]
+        .iter()
+        .map(|&r| (r, (tip(r) - converged).norm()))
+        .collect();
+    (
+        ErrorModel::fit(errors.iter().copied()).unwrap().order,
+        errors,
+    )
+}
