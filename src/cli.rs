@@ -38,7 +38,7 @@ pub struct SceneArgs {
 
     /// Initial angle below the horizontal, in degrees (release scene), 0 to 90. `rope run`
     /// takes a list (e.g. the report's 30,60,90) and runs the scenes one after another.
-    #[arg(long, value_delimiter = ',', default_values_t = [30.0], allow_negative_numbers = true)]
+    #[arg(long, value_delimiter = ',', default_values_t = [30.0], allow_negative_numbers = true, allow_hyphen_values = true)]
     pub angle: Vec<f64>,
 
     /// Which small-oscillation mode the `mode` scene starts in (1 to 4); `rope run` takes a
@@ -47,7 +47,12 @@ pub struct SceneArgs {
     pub mode_number: Vec<u32>,
 
     /// Tip displacement of the `mode` scene, in string lengths (|A| ≤ 0.2).
-    #[arg(long, default_value_t = 0.05, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        default_value_t = 0.05,
+        allow_negative_numbers = true,
+        allow_hyphen_values = true
+    )]
     pub amplitude: f64,
 }
 
@@ -377,12 +382,17 @@ pub enum SceneKind {
 #[derive(Debug, clap::Args)]
 pub struct RunArgs {
     /// Number of segments N (h = 1/N).
-    #[arg(long, default_value_t = 100, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        default_value_t = 100,
+        allow_negative_numbers = true,
+        allow_hyphen_values = true
+    )]
     pub segments: usize,
 
     /// Time step k in time units sqrt(L/g) [default: a stable, accurate value for the method
     /// and N, printed at the start].
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_negative_numbers = true, allow_hyphen_values = true)]
     pub dt: Option<f64>,
 
     #[command(flatten)]
@@ -390,7 +400,12 @@ pub struct RunArgs {
 
     /// Simulated time to run, in time units; `inf` runs until Ctrl-C (with --realtime, a
     /// rope that swings on a screen for as long as it is left).
-    #[arg(long, default_value_t = 3.0, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        default_value_t = 3.0,
+        allow_negative_numbers = true,
+        allow_hyphen_values = true
+    )]
     pub duration: f64,
 
     /// Run the scenes (see --angle) again and again, PASSES times over the list [default:
@@ -403,7 +418,7 @@ pub struct RunArgs {
     /// lengths) at every frame, from the error models `rope study --estimate-check` fitted
     /// over six scenes; prints the choice, its predicted error and cost. The run then watches its live error estimate,
     /// says when it passes EPS, and reports `tolerance_met` in the summary.
-    #[arg(long, value_name = "EPS", allow_negative_numbers = true, conflicts_with_all = ["method", "segments", "dt"])]
+    #[arg(long, value_name = "EPS", allow_negative_numbers = true, allow_hyphen_values = true, conflicts_with_all = ["method", "segments", "dt"])]
     pub tolerance: Option<f64>,
 
     /// Numerical method [default: the report's (seed); for --duration inf, one that stays
@@ -412,7 +427,12 @@ pub struct RunArgs {
     pub method: Option<MethodKind>,
 
     /// Frames logged per time unit.
-    #[arg(long, default_value_t = 60.0, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        default_value_t = 60.0,
+        allow_negative_numbers = true,
+        allow_hyphen_values = true
+    )]
     pub log_rate: f64,
 
     /// Pace the simulation to the wall clock, SPEED time units per second (default 1), for

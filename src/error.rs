@@ -30,7 +30,7 @@ pub enum ConfigError {
     #[error("log-rate = {0}: must be a finite number of frames per time unit > 0")]
     LogRate(f64),
     #[error(
-        "log-rate = {log_rate}: more frames per time unit than time steps ({steps_per_unit:.0}); lower --log-rate or --dt"
+        "log-rate = {log_rate}: more frames per time unit than time steps at this step ({steps_per_unit:.0} per time unit); use --log-rate {steps_per_unit:.0} or less, or a smaller --dt"
     )]
     LogRateAboveSteps { log_rate: f64, steps_per_unit: f64 },
     #[error(

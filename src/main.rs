@@ -89,7 +89,9 @@ fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
         std::fs::write(path, json)
             .with_context(|| format!("writing the summary to {}", path.display()))?;
     }
-    eprintln!("{}", summary.human());
+    if plans.len() == 1 && args.passes() == Some(1) {
+        eprintln!("{}", summary.human());
+    }
     serve_until_stopped(&output, &stop);
     drop(logger); // closes the recording: the file's footer, the last data to viewers
     drop(output);
@@ -182,8 +184,8 @@ fn run_passes(
             })?;
             progress.finish();
             if several {
-                let line = summary.human();
-                eprintln!("{}", line.lines().next().unwrap_or_default());
+                // Each run of several says all it has as it ends; the last is not repeated.
+                eprintln!("{}", summary.human());
             }
             let ended = summary.status != Status::Ok || summary.recording_error.is_some();
             last = Some(summary);

@@ -244,6 +244,65 @@ fn a_diverged_runs_summary_describes_its_last_trusted_state() {
     );
 }
 
+#[test]
+fn messages_point_the_way_a_newcomer_can_follow() {
+    // Too many frames for a coarse step names the log rate that would do (the user set
+    // neither), a file not named .rrd gets a warning, and an energy of zero prints as 0.
+    let out = rope(&[
+        "run",
+        "--segments",
+        "5",
+        "--dt",
+        "0.1",
+        "--save",
+        "/nonexistent/x.rrd",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert!(said.contains("use --log-rate 10 or less"), "{said}");
+    let dir = Scratch::new("newcomer");
+    let txt = dir.path("out.txt");
+    let out = rope(&[
+        "run",
+        "--method",
+        "chain",
+        "--angle",
+        "0",
+        "--duration",
+        "0.05",
+        "--save",
+        txt.to_str().unwrap(),
+    ]);
+    assert!(out.status.success());
+    let said = String::from_utf8_lossy(&out.stdout) + String::from_utf8_lossy(&out.stderr);
+    assert!(
+        said.contains("warning: --save") && said.contains(".rrd"),
+        "{said}"
+    );
+    assert!(
+        said.contains("E_ref = 0.000000") && !said.contains("-0.000000"),
+        "{said}"
+    );
+    assert!(Recording::read(&txt).temporal_rows("rope/segments") > 0);
+    // Several scenes: each run's lines once, with its details.
+    let out = rope(&[
+        "run",
+        "--angle",
+        "30,60",
+        "--duration",
+        "0.05",
+        "--save",
+        dir.path("two.rrd").to_str().unwrap(),
+    ]);
+    assert!(out.status.success());
+    let said = String::from_utf8_lossy(&out.stderr);
+    for angle in ["30°", "60°"] {
+        let line = format!("release at {angle}, N = 100");
+        assert_eq!(said.matches(&line).count(), 1, "{angle}: {said}");
+    }
+    assert_eq!(said.matches("  energy: E_ref").count(), 2, "{said}");
+}
+
 fn interrupt_mid_run(signal: &str) {
     let dir = Scratch::new(&format!("signal-{signal}"));
     let (rrd, json) = (dir.path("i.rrd"), dir.path("i.json"));
@@ -283,9 +342,11 @@ fn sigterm_mid_run_behaves_like_sigint() {
 
 #[test]
 fn bad_inputs_exit_2_naming_the_parameter() {
-    let cases: [(&[&str], &str); 10] = [
+    let cases: [(&[&str], &str); 12] = [
         (&["--segments", "0"][..], "segments"),
         (&["--dt", "-1"][..], "dt"),
+        (&["--dt", "-1e-3"][..], "dt"),
+        (&["--angle", "-1e-3"][..], "angle"),
         (&["--dt", "0.05"][..], "dt"),
         (&["--angle", "120"][..], "angle"),
         (&["--angle", "0"][..], "angle"),

@@ -178,6 +178,13 @@ impl OutputArgs {
             sinks.push(Box::new(sink));
         }
         if let Some(path) = &self.save {
+            if path.extension().is_none_or(|e| e != "rrd") {
+                eprintln!(
+                    "rope: warning: --save {}: the file is a Rerun recording whatever its name; \
+                     name it with .rrd so that `rerun` and other tools recognise it",
+                    path.display()
+                );
+            }
             let sink = rerun::sink::FileSink::new(path).map_err(|err| OutputError::Save {
                 path: path.clone(),
                 reason: err.to_string(),

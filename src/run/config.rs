@@ -127,7 +127,7 @@ impl RunConfig {
         if self.log_rate * dt > 1.0 {
             return Err(ConfigError::LogRateAboveSteps {
                 log_rate: self.log_rate,
-                steps_per_unit: 1.0 / dt,
+                steps_per_unit: (1.0 / dt).floor(),
             });
         }
         Ok(RunPlan {

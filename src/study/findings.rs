@@ -210,7 +210,7 @@ impl Findings {
         for other in &self.matching {
             let _ = writeln!(
                 s,
-                "\n## {} against {}\n\nThe {} method's best tip error on the grid, {:.2e}, costs it {:.2e} CPU s at the least (N = {}, k = {:.3e}). The {} method reaches it (tip error {:.2e}) with N = {}, k = {:.3e} in {:.2e} CPU s: **{:.0}× less CPU**.",
+                "\n## {} against {}\n\nThe {} method's best tip error on the grid, {:.2e}, costs it {:.2e} CPU s at the least (N = {}, k = {:.3e}). The {} method reaches it (tip error {:.2e}) with N = {}, k = {:.3e} in {:.2e} CPU s: **{}**.",
                 other.method,
                 best.method,
                 best.method,
@@ -223,7 +223,7 @@ impl Findings {
                 other.segments,
                 other.dt,
                 other.cpu_seconds,
-                best.cpu_seconds / other.cpu_seconds.max(1e-9)
+                compared(best.cpu_seconds, other.cpu_seconds)
             );
         }
         s
@@ -235,7 +235,7 @@ impl Findings {
             return String::new();
         };
         format!(
-            "\n## The report's accuracy for less\n\nThe report's run ({}, N = {}, k = {:e}): tip error {:.2e}, energy deviation {:.2e}, {:.3} CPU s.\nThe cheapest run at least as accurate in both: {} N = {}, k = {:.3e}: tip error {:.2e}, energy deviation {:.2e}, {:.2e} CPU s, **{:.0}× less CPU**.\n",
+            "\n## The report's accuracy for less\n\nThe report's run ({}, N = {}, k = {:e}): tip error {:.2e}, energy deviation {:.2e}, {:.3} CPU s.\nThe cheapest run at least as accurate in both: {} N = {}, k = {:.3e}: tip error {:.2e}, energy deviation {:.2e}, {:.2e} CPU s, **{}**.\n",
             REPORT.method,
             REPORT.segments,
             REPORT.dt,
@@ -248,8 +248,23 @@ impl Findings {
             best.tip_error.unwrap_or(f64::NAN),
             best.energy_deviation.unwrap_or(f64::NAN),
             best.cpu_seconds,
-            report.cpu_seconds / best.cpu_seconds.max(1e-9)
+            compared(report.cpu_seconds, best.cpu_seconds)
         )
+    }
+}
+
+/// How a run's CPU time `other` compares with `base`'s, in words that say "more" when it is
+/// more: "112× less CPU", "1.9× more CPU".
+fn compared(base: f64, other: f64) -> String {
+    let (ratio, word) = if other <= base {
+        (base / other.max(1e-12), "less")
+    } else {
+        (other / base.max(1e-12), "more")
+    };
+    if ratio >= 10.0 {
+        format!("{ratio:.0}× {word} CPU")
+    } else {
+        format!("{ratio:.2}× {word} CPU")
     }
 }
 
@@ -274,4 +289,17 @@ fn best_of(rows: &[Row], method: MethodKind) -> Option<Row> {
         .filter_map(|r| r.tip_error)
         .min_by(f64::total_cmp)?;
     cheapest_within(rows, method, best * 1.1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::compared;
+
+    #[test]
+    fn a_run_that_costs_more_is_said_to_cost_more() {
+        assert_eq!(compared(1.0, 3.9), "3.90× more CPU");
+        assert_eq!(compared(1.0, 1.9), "1.90× more CPU");
+        assert_eq!(compared(112.0, 1.0), "112× less CPU");
+        assert_eq!(compared(2.0, 1.0), "2.00× less CPU");
+    }
 }
