@@ -124,7 +124,7 @@ fn normal(t: Vector2<f64>) -> Vector2<f64> {
 }
 
 /// One rod's turn Δθ over a step, and what the discrete gradient needs of it.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug)]
 struct Turn {
     /// b = sinc(Δθ/2) n(θ + Δθ/2): the angular column of Ḡ, over h/2.
     b: Vector2<f64>,
@@ -317,14 +317,19 @@ impl Midpoint {
         }
     }
 
+    /// μ_{i+1}, the multiplier of the joint at rod i's end (zero past the free end).
+    #[inline]
+    fn multiplier_after(&self, i: usize) -> Vector2<f64> {
+        self.multiplier
+            .get(i + 1)
+            .copied()
+            .unwrap_or_else(Vector2::zeros)
+    }
+
     /// The centre's increment over a step of length `dt` for rod i at multipliers μ.
     #[inline]
     fn centre_increment(&self, i: usize, dt: f64) -> Vector2<f64> {
-        let after = self
-            .multiplier
-            .get(i + 1)
-            .copied()
-            .unwrap_or_else(Vector2::zeros);
+        let after = self.multiplier_after(i);
         let mut shift = dt * self.velocity[i] + (self.multiplier[i] - after) / self.h;
         shift.y += 0.5 * dt * dt;
         shift
@@ -344,11 +349,7 @@ impl Midpoint {
         let mut before_af = Vector2::zeros(); // a_{j−1} F_{j−1} / d_{j−1}
         let mut before_y = Vector2::zeros();
         for j in 0..n {
-            let after = self
-                .multiplier
-                .get(j + 1)
-                .copied()
-                .unwrap_or_else(Vector2::zeros);
+            let after = self.multiplier_after(j);
             let m = self.multiplier[j] + after;
             let (b, chord) = if refresh {
                 let rod = Turn::of(self.tangent[j], self.turn[j]);
@@ -436,11 +437,7 @@ impl Midpoint {
                 dt * dt * (self.recent[i] + slope * (self.recent[i] - self.older[i]));
         }
         for i in 0..n {
-            let after = self
-                .multiplier
-                .get(i + 1)
-                .copied()
-                .unwrap_or_else(Vector2::zeros);
+            let after = self.multiplier_after(i);
             let m = self.multiplier[i] + after;
             let free = dt * self.rate[i];
             self.turn[i] = free - spin_gain * Turn::lean(self.tangent[i], free).0.dot(&m);
