@@ -36,49 +36,81 @@ pub struct SceneArgs {
     #[arg(long, value_enum, default_value_t = SceneKind::Release)]
     pub scene: SceneKind,
 
-    /// Initial angle below the horizontal, in degrees (release scene), 0 to 90. `rope run`
-    /// takes a list (e.g. the report's 30,60,90) and runs the scenes one after another.
-    #[arg(long, value_delimiter = ',', default_values_t = [30.0], allow_negative_numbers = true, allow_hyphen_values = true)]
-    pub angle: Vec<f64>,
-
-    /// Which small-oscillation mode the `mode` scene starts in (1 to 4); `rope run` takes a
-    /// list, as for --angle.
-    #[arg(long, value_delimiter = ',', default_values_t = [1])]
-    pub mode_number: Vec<u32>,
-
-    /// Tip displacement of the `mode` scene, in string lengths (|A| ≤ 0.2).
+    /// Initial angle below the horizontal, in degrees (release scene), 0 to 90 [default: 30].
+    /// `rope run` takes a list (e.g. the report's 30,60,90) and runs the scenes one after
+    /// another.
     #[arg(
         long,
-        default_value_t = 0.05,
+        value_delimiter = ',',
         allow_negative_numbers = true,
         allow_hyphen_values = true
     )]
-    pub amplitude: f64,
+    pub angle: Vec<f64>,
+
+    /// Which small-oscillation mode the `mode` scene starts in (1 to 4) [default: 1]; `rope run`
+    /// takes a list, as for --angle.
+    #[arg(long, value_delimiter = ',')]
+    pub mode_number: Vec<u32>,
+
+    /// Tip displacement of the `mode` scene, in string lengths (|A| ≤ 0.2) [default: 0.05].
+    #[arg(long, allow_negative_numbers = true, allow_hyphen_values = true)]
+    pub amplitude: Option<f64>,
 }
 
 impl SceneArgs {
-    /// The scenes the flags describe, in the order given.
-    pub fn scenes(&self) -> Vec<Scene> {
+    /// The release angle when none is given.
+    pub const DEFAULT_ANGLE: f64 = 30.0;
+    /// The mode when none is given.
+    pub const DEFAULT_MODE: u32 = 1;
+    /// The mode's tip displacement when none is given.
+    pub const DEFAULT_AMPLITUDE: f64 = 0.05;
+
+    /// The scenes the flags describe, in the order given. A flag of the other scene is
+    /// refused, naming it, rather than silently ignored.
+    pub fn scenes(&self) -> Result<Vec<Scene>, ConfigError> {
+        let foreign = |flag: &'static str| ConfigError::ForeignSceneFlag {
+            flag,
+            scene: self.scene.name(),
+        };
         match self.scene {
-            SceneKind::Release => self
-                .angle
-                .iter()
-                .map(|&angle_deg| Scene::Release { angle_deg })
-                .collect(),
-            SceneKind::Mode => self
-                .mode_number
-                .iter()
-                .map(|&number| Scene::Mode {
-                    number,
-                    amplitude: self.amplitude,
-                })
-                .collect(),
+            SceneKind::Release => {
+                if !self.mode_number.is_empty() {
+                    return Err(foreign("mode-number"));
+                }
+                if self.amplitude.is_some() {
+                    return Err(foreign("amplitude"));
+                }
+                let angles = if self.angle.is_empty() {
+                    &[Self::DEFAULT_ANGLE][..]
+                } else {
+                    &self.angle[..]
+                };
+                Ok(angles
+                    .iter()
+                    .map(|&angle_deg| Scene::Release { angle_deg })
+                    .collect())
+            }
+            SceneKind::Mode => {
+                if !self.angle.is_empty() {
+                    return Err(foreign("angle"));
+                }
+                let numbers = if self.mode_number.is_empty() {
+                    &[Self::DEFAULT_MODE][..]
+                } else {
+                    &self.mode_number[..]
+                };
+                let amplitude = self.amplitude.unwrap_or(Self::DEFAULT_AMPLITUDE);
+                Ok(numbers
+                    .iter()
+                    .map(|&number| Scene::Mode { number, amplitude })
+                    .collect())
+            }
         }
     }
 
     /// The one scene a study is about, validated.
     pub fn scene(&self) -> Result<Scene, ConfigError> {
-        match self.scenes().as_slice() {
+        match self.scenes()?.as_slice() {
             [scene] => {
                 scene.validate()?;
                 Ok(*scene)
@@ -278,7 +310,7 @@ impl StudyArgs {
                 duration,
             });
         }
-        let scenes = self.scene.scenes();
+        let scenes = self.scene.scenes()?;
         for scene in &scenes {
             scene.validate()?;
         }
@@ -376,6 +408,16 @@ pub enum SceneKind {
     Release,
     /// Hanging at rest, displaced by --amplitude in the shape of mode --mode-number.
     Mode,
+}
+
+impl SceneKind {
+    /// The name on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Release => "release",
+            Self::Mode => "mode",
+        }
+    }
 }
 
 /// `rope run` flags.
@@ -490,7 +532,7 @@ pub struct Planned {
 impl RunArgs {
     /// Validates the flags into the runs to make, in order.
     pub fn plans(&self) -> Result<Vec<Planned>, ConfigError> {
-        let scenes = self.scene.scenes();
+        let scenes = self.scene.scenes()?;
         if self.duration.is_infinite() && (self.repeat.is_some() || scenes.len() > 1) {
             return Err(ConfigError::Loop(
                 "an endless run (--duration inf) never ends, so no other run can follow it; give a finite --duration to --loop or to a list of scenes".to_owned(),

@@ -138,6 +138,13 @@ pub enum ConfigError {
     },
     #[error("reference = {path}: {reason}; write one with `rope study --reference-only --out DIR`")]
     ReferenceUnreadable { path: String, reason: String },
+    #[error(
+        "--{flag}: the {scene} scene does not take it (it would be ignored); the release scene takes --angle, the mode scene --mode-number and --amplitude (choose with --scene)"
+    )]
+    ForeignSceneFlag {
+        flag: &'static str,
+        scene: &'static str,
+    },
     #[error("mode-number = {0}: must be 1, 2, 3 or 4")]
     ModeNumber(u32),
     #[error(

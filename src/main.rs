@@ -22,6 +22,9 @@ const EXIT_BAD_INPUT: u8 = 2;
 const EXIT_DIVERGED: u8 = 3;
 const EXIT_INTERRUPTED: u8 = 130;
 
+/// The relative energy deviation past which a run is told which method keeps the energy.
+const ENERGY_HINT: f64 = 0.01;
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
@@ -77,7 +80,7 @@ fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
     }
     let mut logger =
         RopeLogger::new(output.rec.clone()).context("logging the recording's styling")?;
-    let mut summary = run_passes(args, &plans, &mut logger, &stop)?;
+    let (mut summary, strayed) = run_passes(args, &plans, &mut logger, &stop)?;
     if let Some(reason) = lost_viewer(&output) {
         summary.recording_error = Some(format!(
             "{reason} (the run reached t = {:.3})",
@@ -92,6 +95,7 @@ fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
     if plans.len() == 1 && args.passes() == Some(1) {
         eprintln!("{}", summary.human());
     }
+    energy_hint(strayed);
     serve_until_stopped(&output, &stop);
     drop(logger); // closes the recording: the file's footer, the last data to viewers
     drop(output);
@@ -99,18 +103,9 @@ fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
 }
 
 /// Says what was chosen for the user: the tolerance rule's choice, a default step, a default
-/// method for an endless run, and the predicted cost of a run that takes more than a minute.
+/// method for an endless run, and the predicted cost of a run that takes more than a minute;
+/// warns of a step past a method's limit and of a run the method is known not to last.
 fn announce(args: &RunArgs, plans: &[Planned]) {
-    for Planned { plan, .. } in plans {
-        if plan.cost.seconds > cost::ANNOUNCE_SECONDS {
-            eprintln!(
-                "rope: {} is predicted to take about {} of CPU and {} of memory",
-                plan.scene,
-                cost::seconds_text(plan.cost.seconds),
-                cost::bytes_text(plan.cost.bytes)
-            );
-        }
-    }
     let several = plans.len() > 1;
     for Planned { plan, choice } in plans {
         let Some(choice) = choice else { continue };
@@ -129,20 +124,82 @@ fn announce(args: &RunArgs, plans: &[Planned]) {
             plan.cost.seconds
         );
     }
-    if let (None, None, Some(Planned { plan, .. })) = (args.tolerance, args.dt, plans.first()) {
-        eprintln!(
-            "rope: --dt not given: using k = {:.3e} for the {} method at N = {} (estimated stability limit {:.3e})",
-            plan.dt,
-            plan.method,
-            plan.segments,
-            plan.method.stability_limit(plan.segments)
-        );
+    for Planned { plan, .. } in plans {
+        if plan.cost.seconds > cost::ANNOUNCE_SECONDS {
+            eprintln!(
+                "rope: {} is predicted to take about {} of CPU and {} of memory",
+                plan.scene,
+                cost::seconds_text(plan.cost.seconds),
+                cost::bytes_text(plan.cost.bytes)
+            );
+        }
+    }
+    if let Some(Planned { plan, .. }) = plans.first() {
+        let method = plan.method.descriptor();
+        let limit = method.stability_limit(plan.segments);
+        if args.tolerance.is_none() && args.dt.is_none() {
+            eprintln!(
+                "rope: --dt not given: using k = {:.3e} for the {} method at N = {} (estimated stability limit {limit:.3e}: {})",
+                plan.dt, plan.method, plan.segments, method.past_limit
+            );
+        } else if plan.dt > limit && !method.refuses_unstable_step {
+            eprintln!(
+                "rope: k = {:e} is {:.1} times the {} method's estimated stability limit {limit:.3e} at N = {}; {}",
+                plan.dt,
+                plan.dt / limit,
+                plan.method,
+                plan.segments,
+                method.past_limit
+            );
+        }
+        if let Some(blow_up) = method.blow_up_at(plan.segments)
+            && plan.duration > blow_up.earliest
+        {
+            let stable: Vec<&str> = rope::methods::MethodKind::ALL
+                .iter()
+                .filter(|m| m.descriptor().blow_up.is_empty())
+                .map(|m| m.name())
+                .collect();
+            eprintln!(
+                "rope: warning: a run to t = {} will most likely stop early: the {} method blows up in a long run at any step (from the release at 30° at N = {}, `rope study --blow-up 200` saw it diverge between t = {} and {}); for a long run use --method {}",
+                plan.duration,
+                plan.method,
+                blow_up.segments,
+                blow_up.earliest,
+                blow_up.latest,
+                stable.join(" or ")
+            );
+        }
     }
     // (--tolerance with an endless run was refused before.)
     if args.method.is_none() && args.duration.is_infinite() {
         eprintln!(
             "rope: an endless run uses the {} method, which stays stable for ever (--method to choose another)",
             args.method()
+        );
+    }
+}
+
+/// The method whose energy strayed most, and by how much relative to |E_ref|, among the
+/// runs of methods that do not keep it.
+type Strayed = Option<(rope::methods::MethodKind, f64)>;
+
+/// Once, after the runs: a method that let the energy stray by more than
+/// [`ENERGY_HINT`] of |E_ref| is told which method keeps it.
+fn energy_hint(strayed: Strayed) {
+    let Some((method, deviation)) = strayed else {
+        return;
+    };
+    let Some(keeper) = rope::methods::MethodKind::ALL
+        .iter()
+        .find(|m| m.descriptor().keeps_energy)
+    else {
+        return;
+    };
+    if deviation > ENERGY_HINT {
+        eprintln!(
+            "rope: the {method} method let the energy stray by up to {:.1} % of |E_ref|; the {keeper} method keeps it exactly (--method {keeper})",
+            100.0 * deviation
         );
     }
 }
@@ -162,15 +219,16 @@ fn stop_on_interrupt() -> anyhow::Result<Arc<AtomicBool>> {
 }
 
 /// Runs the plans in turn, `--loop` times over, until one does not end well or `stop` is
-/// set. Returns the last run's summary.
+/// set. Returns the last run's summary, and the method whose energy strayed most.
 fn run_passes(
     args: &RunArgs,
     plans: &[Planned],
     logger: &mut RopeLogger,
     stop: &AtomicBool,
-) -> anyhow::Result<Summary> {
+) -> anyhow::Result<(Summary, Strayed)> {
     let several = plans.len() > 1 || args.passes() != Some(1);
     let mut last = None;
+    let mut strayed: Strayed = None;
     let mut pass = 0;
     'passes: while args.passes().is_none_or(|passes| pass < passes) {
         pass += 1;
@@ -188,13 +246,19 @@ fn run_passes(
                 eprintln!("{}", summary.human());
             }
             let ended = summary.status != Status::Ok || summary.recording_error.is_some();
+            let deviation = summary.energy.max_rel_deviation;
+            if !summary.method.descriptor().keeps_energy
+                && strayed.is_none_or(|(_, worst)| deviation > worst)
+            {
+                strayed = Some((summary.method, deviation));
+            }
             last = Some(summary);
             if ended || stop.load(Ordering::SeqCst) {
                 break 'passes;
             }
         }
     }
-    last.context("no run was made")
+    Ok((last.context("no run was made")?, strayed))
 }
 
 /// What a run says, once, when its error estimate passes the tolerance.

@@ -126,11 +126,148 @@ fn mode_scene_summary_measures_the_period() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    let period = summary(&json)["period"].as_f64().expect("a period");
+    let s = summary(&json);
+    let period = s["period"].as_f64().expect("a period");
     let bernoulli = std::f64::consts::TAU / rope::model::bessel::mode_frequency(1);
     assert!(
         (period / bernoulli - 1.0).abs() < 0.01,
         "period {period}, Bernoulli {bernoulli}"
+    );
+    // The theory beside the measurement: ω₁ = j₀,₁ / 2 = 2.404826 / 2, and the difference.
+    let theory = s["period_theory"].as_f64().expect("the Bessel period");
+    assert!(
+        (theory - std::f64::consts::TAU / 1.202413).abs() < 1e-5,
+        "{theory}"
+    );
+    let said = String::from_utf8_lossy(&out.stderr);
+    let expected = format!("{:+.2} %", 100.0 * (period - theory) / theory);
+    assert!(
+        said.contains("Bernoulli") && said.contains(&expected),
+        "{said}"
+    );
+}
+
+#[test]
+fn a_mode_run_shorter_than_its_period_says_how_long_to_run() {
+    let dir = Scratch::new("mode-short");
+    let json = dir.path("summary.json");
+    let out = rope(&[
+        "run",
+        "--scene",
+        "mode",
+        "--mode-number",
+        "1",
+        "--duration",
+        "3",
+        "--save",
+        dir.path("m.rrd").to_str().unwrap(),
+        "--summary",
+        json.to_str().unwrap(),
+    ]);
+    assert!(out.status.success());
+    assert!(summary(&json)["period"].is_null());
+    let said = String::from_utf8_lossy(&out.stderr);
+    // Three zero crossings of the tip take 1.25 periods of 5.2255: 6.53.
+    assert!(
+        said.contains("period not measured") && said.contains("--duration 7 or more"),
+        "{said}"
+    );
+}
+
+#[test]
+fn a_release_summary_checks_the_free_fall_of_the_tip() {
+    let dir = Scratch::new("free-fall");
+    let json = dir.path("summary.json");
+    let out = rope(&[
+        "run",
+        "--method",
+        "midpoint",
+        "--angle",
+        "0",
+        "--duration",
+        "1",
+        "--save",
+        dir.path("f.rrd").to_str().unwrap(),
+        "--summary",
+        json.to_str().unwrap(),
+    ]);
+    assert!(out.status.success());
+    let s = summary(&json);
+    // From the horizontal the tip falls as a body, y = t²/2, until the bend arrives.
+    let (gap, until) = (
+        s["free_fall"]["max_gap"].as_f64().unwrap(),
+        s["free_fall"]["until"].as_f64().unwrap(),
+    );
+    assert!(gap < 1e-12 && until > 0.7, "gap {gap} until {until}");
+    let tips = s["tip_samples"].as_array().unwrap();
+    let worst = tips
+        .iter()
+        .map(|t| (t[0].as_f64().unwrap(), t[2].as_f64().unwrap()))
+        .filter(|&(t, _)| t <= until)
+        .map(|(t, y)| (y - t * t / 2.0).abs())
+        .fold(0.0, f64::max);
+    assert!(worst < 1e-12, "{worst}");
+    assert!(String::from_utf8_lossy(&out.stderr).contains("free fall of the tip"));
+}
+
+#[test]
+fn choices_the_program_makes_are_said_before_and_after() {
+    let dir = Scratch::new("choices");
+    let rrd = dir.path("c.rrd");
+    // A step past the chain's limit runs, and the user is told what the limit means.
+    let out = rope(&[
+        "run",
+        "--method",
+        "chain",
+        "--dt",
+        "0.01",
+        "--duration",
+        "0.2",
+        "--save",
+        rrd.to_str().unwrap(),
+    ]);
+    assert!(out.status.success());
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        said.contains("times the chain method's estimated stability limit")
+            && said.contains("substeps"),
+        "{said}"
+    );
+    // A seed run longer than the scheme lasts is warned of before, and it suggests a method
+    // that lasts; after the run, the energy's stray names the method that keeps it.
+    let out = rope(&["run", "--duration", "1e6", "--save", rrd.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(3));
+    let said = String::from_utf8_lossy(&out.stderr);
+    let warning = said.find("will most likely stop early").expect(&said);
+    let diverged = said.find("DIVERGED").expect(&said);
+    assert!(warning < diverged, "{said}");
+    assert!(
+        said.contains("--method chain or rattle or midpoint"),
+        "{said}"
+    );
+    assert!(
+        said.contains("the midpoint method keeps it exactly"),
+        "{said}"
+    );
+}
+
+#[test]
+fn a_port_in_use_is_reported_once_with_a_free_one_to_try() {
+    let listener = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let port = listener.local_addr().unwrap().port();
+    let out = rope(&[
+        "run",
+        "--serve-grpc",
+        &port.to_string(),
+        "--duration",
+        "0.1",
+    ]);
+    assert!(!out.status.success());
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(said.matches("os error").count(), 1, "{said}");
+    assert!(
+        said.contains(&format!("--serve-grpc 127.0.0.1:{}", port + 1)),
+        "{said}"
     );
 }
 
@@ -342,7 +479,7 @@ fn sigterm_mid_run_behaves_like_sigint() {
 
 #[test]
 fn bad_inputs_exit_2_naming_the_parameter() {
-    let cases: [(&[&str], &str); 12] = [
+    let cases: [(&[&str], &str); 15] = [
         (&["--segments", "0"][..], "segments"),
         (&["--dt", "-1"][..], "dt"),
         (&["--dt", "-1e-3"][..], "dt"),
@@ -358,6 +495,10 @@ fn bad_inputs_exit_2_naming_the_parameter() {
         ),
         (&["--scene", "mode", "--amplitude", "NaN"][..], "amplitude"),
         (&["--segments", "-3"][..], "segments"),
+        // A flag of the other scene is refused, not ignored.
+        (&["--scene", "mode", "--angle", "45"][..], "--angle"),
+        (&["--amplitude", "0.1"][..], "--amplitude"),
+        (&["--mode-number", "2"][..], "--mode-number"),
     ];
     assert_each_exits_2_naming(&["run", "--save", "/nonexistent/never-written.rrd"], &cases);
 }

@@ -38,6 +38,9 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     // Past this the chain still runs (it substeps to stay stable) but pays for the substeps.
     courant: SUBSTEP_COURANT,
     limit_meaning: "substeps start: k = C h / sqrt(F_max)",
+    past_limit: "past it each step is split into RK4 substeps within it, so the chain stays stable and only costs more: the limit is where the substeps start, not where the chain fails",
+    keeps_energy: false,
+    blow_up: &[],
     // 0.3 of the limit (5e-4 at N = 100): RK4's energy loss stays below 1e-6 over 10 time
     // units there (tests/chain_physics.rs); the state adds substeps where the whip needs them.
     default_step_fraction: 0.3,

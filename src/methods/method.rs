@@ -195,6 +195,16 @@ pub struct Descriptor {
     pub courant: f64,
     /// What the stability limit means for this method, as the stability map labels it.
     pub limit_meaning: &'static str,
+    /// What a time step past the stability limit does to this method, as a sentence for the
+    /// user who asks for one (or who reads the limit printed beside the default step).
+    pub past_limit: &'static str,
+    /// Whether the method keeps the energy exactly (to round-off), whatever the step: the
+    /// one to suggest when another strays.
+    pub keeps_energy: bool,
+    /// For a method that blows up in a long run at any step: when it did, from the release
+    /// at 30°, in every run of `rope study --blow-up 200` (`assets/blow-up/`), by N. Empty
+    /// for a method that stays stable for ever.
+    pub blow_up: &'static [BlowUp],
     /// The default time step, as a fraction of the stability limit (then rounded down to
     /// 1, 2 or 5 × 10^k).
     pub default_step_fraction: f64,
@@ -218,7 +228,29 @@ pub struct Descriptor {
     pub build: Builder,
 }
 
+/// When a method blew up at one N, over the steps of the blow-up map.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BlowUp {
+    pub segments: usize,
+    /// The earliest and the latest time of divergence over the map's steps.
+    pub earliest: f64,
+    pub latest: f64,
+}
+
 impl Descriptor {
+    /// When the method is known to blow up at `segments` segments: the map's row at that N,
+    /// or between two rows the earlier of the two (beyond the rows, the nearest).
+    pub fn blow_up_at(&self, segments: usize) -> Option<BlowUp> {
+        let below = self.blow_up.iter().rev().find(|b| b.segments <= segments);
+        let above = self.blow_up.iter().find(|b| b.segments >= segments);
+        match (below, above) {
+            (Some(a), Some(b)) if a.earliest <= b.earliest => Some(*a),
+            (_, Some(b)) => Some(*b),
+            (Some(a), None) => Some(*a),
+            (None, None) => None,
+        }
+    }
+
     /// Estimated largest stable time step at `segments` segments: k < C h / sqrt(F_max).
     pub fn stability_limit(&self, segments: usize) -> f64 {
         self.courant / (segments as f64 * TENSION_MAX.sqrt())

@@ -31,6 +31,7 @@ pub mod tolerance;
 pub mod tridiagonal;
 
 pub use method::{
-    Descriptor, Method, Observation, StepStatistics, TENSION_MAX, round_down_nicely, stability_hint,
+    BlowUp, Descriptor, Method, Observation, StepStatistics, TENSION_MAX, round_down_nicely,
+    stability_hint,
 };
 pub use registry::{MethodKind, REPORT, ReportSetting};

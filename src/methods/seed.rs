@@ -7,7 +7,7 @@
 //! step reads the arrays twice; (iii) the support condition (11); (iv) the free end (12).
 
 use super::error_model::ErrorModel;
-use super::method::{self, Descriptor, Method, Observation};
+use super::method::{self, BlowUp, Descriptor, Method, Observation};
 use crate::error::{ConfigError, Diverged};
 use crate::model::Scene;
 use crate::model::geometry::{self, Energy};
@@ -20,6 +20,36 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     // Measured by `rope study` (its stability map): the scheme blows up past about this.
     courant: 0.7,
     limit_meaning: "estimate k = C h / sqrt(F_max)",
+    past_limit: "the scheme blows up past it, so a step past it is refused unless --allow-unstable asks to watch it fail",
+    keeps_energy: false,
+    // `rope study --blow-up 200 --out assets/blow-up`: every run diverged before t = 200.
+    blow_up: &[
+        BlowUp {
+            segments: 25,
+            earliest: 18.2,
+            latest: 132.3,
+        },
+        BlowUp {
+            segments: 50,
+            earliest: 23.6,
+            latest: 74.1,
+        },
+        BlowUp {
+            segments: 100,
+            earliest: 21.0,
+            latest: 62.8,
+        },
+        BlowUp {
+            segments: 200,
+            earliest: 17.7,
+            latest: 66.5,
+        },
+        BlowUp {
+            segments: 400,
+            earliest: 6.4,
+            latest: 8.2,
+        },
+    ],
     // Half the limit: the error is dominated by the first order in h, a smaller k buys
     // nothing.
     default_step_fraction: 0.5,

@@ -52,6 +52,31 @@ impl Scene {
         }
     }
 
+    /// The small-oscillation period of the `mode` scene, 2π/ω_n with ω_n from the n-th zero
+    /// of J₀ (D. Bernoulli); `None` for a release.
+    pub fn mode_period(&self) -> Option<f64> {
+        match *self {
+            Self::Mode { number, .. } => {
+                Some(std::f64::consts::TAU / bessel::mode_frequency(number))
+            }
+            Self::Release { .. } => None,
+        }
+    }
+
+    /// How far the tip of a release strays from free fall at time `time`: the string beyond
+    /// the travelling bend stays straight, so across its initial line the tip falls exactly
+    /// as a body, −sin φ₀ x + cos φ₀ y = cos φ₀ t²/2 (y down), until the bend reaches it
+    /// (about t ≈ 1.2). `None` for a mode, which starts hanging.
+    pub fn free_fall_gap(&self, time: f64, tip_x: f64, tip_y: f64) -> Option<f64> {
+        match *self {
+            Self::Release { angle_deg } => {
+                let (sin, cos) = angle_deg.to_radians().sin_cos();
+                Some((-sin * tip_x + cos * tip_y - cos * time * time / 2.0).abs())
+            }
+            Self::Mode { .. } => None,
+        }
+    }
+
     /// Angles φ_i of `segments` equal segments, sampled at the segment centres s = (i + ½)h.
     pub fn initial_angles(&self, segments: usize) -> Vec<f64> {
         let h = 1.0 / segments as f64;

@@ -150,7 +150,7 @@ impl OutputArgs {
         addr: SocketAddr,
         stream: &str,
     ) -> Result<(String, Box<dyn std::any::Any>), OutputError> {
-        let refuse = |source| OutputError::WebAddress { addr, source };
+        let refuse = |reason| OutputError::WebAddress { addr, reason };
         std::net::TcpListener::bind(addr).map_err(refuse)?;
         let server = rerun::serve_web_viewer(rerun::web_viewer::WebViewerConfig {
             bind_ip: addr.ip().to_string(),
@@ -229,7 +229,7 @@ impl OutputArgs {
     /// would only log a bind failure on its own thread, and the run would go on unseen).
     fn serve(&self, addr: SocketAddr) -> Result<rerun::grpc_server::GrpcServerSink, OutputError> {
         std::net::TcpListener::bind(addr)
-            .map_err(|source| OutputError::ServeAddress { addr, source })?;
+            .map_err(|reason| OutputError::ServeAddress { addr, reason })?;
         let memory_limit = history_limit(self.server_memory_limit.limit);
         let ip = match addr.ip() {
             IpAddr::V4(ip) => ip.to_string(),
@@ -246,9 +246,9 @@ impl OutputArgs {
         )
         .map_err(|err| OutputError::ServeAddress {
             addr,
-            source: std::io::Error::new(std::io::ErrorKind::InvalidInput, err),
+            reason: std::io::Error::new(std::io::ErrorKind::InvalidInput, err),
         })?;
-        wait_until_listening(addr).map_err(|source| OutputError::ServeAddress { addr, source })?;
+        wait_until_listening(addr).map_err(|reason| OutputError::ServeAddress { addr, reason })?;
         Ok(server)
     }
 

@@ -22,18 +22,23 @@ pub enum OutputError {
     )]
     NoViewerListening { url: String },
     #[error(
-        "serve-grpc = {addr}: cannot listen there ({source}); name a free port, e.g. --serve-grpc 127.0.0.1:9877"
+        "serve-grpc = {addr}: cannot listen there ({reason}); name a free port, e.g. --serve-grpc {}:{}",
+        addr.ip(),
+        addr.port().wrapping_add(1)
     )]
     ServeAddress {
         addr: SocketAddr,
-        source: std::io::Error,
+        /// Not a `source`: the message says it, and the error is printed with its chain.
+        reason: std::io::Error,
     },
     #[error(
-        "web = {addr}: cannot serve the web viewer there ({source}); name a free port, e.g. --web 127.0.0.1:9091"
+        "web = {addr}: cannot serve the web viewer there ({reason}); name a free port, e.g. --web {}:{}",
+        addr.ip(),
+        addr.port().wrapping_add(1)
     )]
     WebAddress {
         addr: SocketAddr,
-        source: std::io::Error,
+        reason: std::io::Error,
     },
     #[error("save = {path}: cannot write there ({reason})")]
     Save { path: PathBuf, reason: String },
@@ -41,7 +46,7 @@ pub enum OutputError {
         "stdout is a terminal: a recording is binary; pipe it into a viewer (`rope run --stdout | rerun -`) or use --save FILE.rrd"
     )]
     StdoutIsTerminal,
-    #[error("could not open the recording: {0}")]
+    #[error("could not open the recording")]
     Recording(#[from] rerun::RecordingStreamError),
     #[error("could not start a thread: {0}")]
     Thread(std::io::Error),

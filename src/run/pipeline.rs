@@ -146,7 +146,7 @@ fn simulate_and_send(
         duration: plan.duration,
         log_rate: plan.log_rate,
     };
-    let mut samples = TipSamples::default();
+    let mut samples = TipSamples::new(plan.scene);
     let mut waiting = Duration::ZERO;
     let Simulation { method, watch } = simulation;
     let outcome = simulate::run_watched(method, watch, &options, Some(stop), |frame| {

@@ -15,18 +15,53 @@ use std::time::Duration;
 /// Tip samples the summary keeps (the latest), so that an endless run's memory stays flat.
 pub const MAX_TIP_SAMPLES: usize = 1 << 16;
 
-/// The tip's latest `[t, x, y]` samples, at most [`MAX_TIP_SAMPLES`].
-#[derive(Clone, Debug, Default)]
-pub struct TipSamples(VecDeque<[f64; 3]>);
+/// How long the free fall of a released tip is checked: well before the bend reaches the tip
+/// (about t ≈ 1.2), where the chains of rods obey the law to round-off (`docs/physics.md`).
+pub const FREE_FALL_UNTIL: f64 = 0.75;
+
+/// The tip's latest `[t, x, y]` samples, at most [`MAX_TIP_SAMPLES`], and how far it strayed
+/// from free fall up to [`FREE_FALL_UNTIL`].
+#[derive(Clone, Debug)]
+pub struct TipSamples {
+    scene: Scene,
+    latest: VecDeque<[f64; 3]>,
+    free_fall: Option<FreeFall>,
+}
 
 impl TipSamples {
+    /// No samples yet, of a run from `scene`.
+    pub fn new(scene: Scene) -> Self {
+        Self {
+            scene,
+            latest: VecDeque::new(),
+            free_fall: None,
+        }
+    }
+
     /// Adds the tip at `time`, forgetting the oldest sample when full.
     pub fn push(&mut self, time: f64, tip: Point) {
-        if self.0.len() == MAX_TIP_SAMPLES {
-            self.0.pop_front();
+        if self.latest.len() == MAX_TIP_SAMPLES {
+            self.latest.pop_front();
         }
-        self.0.push_back([time, tip.x, tip.y]);
+        self.latest.push_back([time, tip.x, tip.y]);
+        if time <= FREE_FALL_UNTIL
+            && let Some(gap) = self.scene.free_fall_gap(time, tip.x, tip.y)
+        {
+            let worst = self.free_fall.map_or(0.0, |f| f.max_gap);
+            self.free_fall = Some(FreeFall {
+                until: time,
+                max_gap: worst.max(gap),
+            });
+        }
     }
+}
+
+/// The tip of a release against free fall (`Scene::free_fall_gap`), over the frames up to
+/// `until`.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct FreeFall {
+    pub until: f64,
+    pub max_gap: f64,
 }
 
 /// How the run ended.
@@ -112,8 +147,14 @@ pub struct Summary {
     pub tolerance_exceeded_at: Option<f64>,
     /// `[t, x, y]` of the tip at every logged frame.
     pub tip_samples: Vec<[f64; 3]>,
-    /// Oscillation period from the tip's zero crossings, for the `mode` scene.
+    /// Oscillation period from the tip's zero crossings, for the `mode` scene (it needs three
+    /// crossings, 1.25 periods).
     pub period: Option<f64>,
+    /// The small-oscillation period 2π/ω_n from the Bessel zero, for the `mode` scene.
+    pub period_theory: Option<f64>,
+    /// For a release: the largest distance of the tip from the free-fall law up to
+    /// [`FREE_FALL_UNTIL`] (exact for the string until the bend arrives).
+    pub free_fall: Option<FreeFall>,
     /// Why the recording could not be completed (e.g. the viewer went away), if it could not.
     pub recording_error: Option<String>,
 }
@@ -136,7 +177,8 @@ impl Summary {
         } else {
             Status::Ok
         };
-        let samples: Vec<[f64; 3]> = tip_samples.0.into();
+        let free_fall = tip_samples.free_fall;
+        let samples: Vec<[f64; 3]> = tip_samples.latest.into();
         let period = match plan.scene {
             Scene::Mode { .. } => {
                 analysis::period_from_zero_crossings(samples.iter().map(|s| (s[0], s[1])))
@@ -182,6 +224,8 @@ impl Summary {
             tolerance_exceeded_at: outcome.tolerance_exceeded_at,
             tip_samples: samples,
             period,
+            period_theory: plan.scene.mode_period(),
+            free_fall,
             recording_error,
         }
     }
@@ -277,12 +321,7 @@ impl Summary {
                 _ => format!("  tolerance {eps:.1e}: unknown, the estimate was lost\n"),
             };
         }
-        if let Some(period) = self.period {
-            text += &format!(
-                "  period {period:.4} (angular frequency {:.4})\n",
-                std::f64::consts::TAU / period
-            );
-        }
+        text += &self.theory_lines();
         text += &format!(
             "  {:.3} s wall, {:.1} ns per segment-step, {} frames logged",
             self.wall_seconds, self.ns_per_segment_step, self.frames_logged
@@ -290,6 +329,53 @@ impl Summary {
         text
     }
 }
+
+impl Summary {
+    /// What the program knows of the scene's physics beside what the run measured: the
+    /// Bessel period of a mode, the free fall of a released tip.
+    fn theory_lines(&self) -> String {
+        let mut text = String::new();
+        if let Some(f) = self.free_fall {
+            text += &format!(
+                "  free fall of the tip (exact until the bend reaches it, near t = 1.2): off by at most {:.1e} up to t = {:.3}\n",
+                f.max_gap, f.until
+            );
+        }
+        let (Some(theory), Scene::Mode { number, amplitude }) = (self.period_theory, self.initial)
+        else {
+            return text;
+        };
+        let tau = std::f64::consts::TAU;
+        match self.period {
+            Some(period) => {
+                let difference = 100.0 * (period - theory) / theory;
+                text += &format!(
+                    "  period {period:.4} measured (angular frequency {:.4}); Bernoulli's small oscillations give {theory:.4} (ω_{number} = {:.4}, from the zero of J₀): {difference:+.2} %\n",
+                    tau / period,
+                    tau / theory
+                );
+                if difference.abs() > PERIOD_NOTE_PERCENT {
+                    text += &format!(
+                        "  the theory is for small amplitudes: at a tip amplitude of {amplitude} the swing is large enough to shift the period (a smaller --amplitude, e.g. 0.01, comes closer)\n"
+                    );
+                }
+            }
+            None => {
+                text += &format!(
+                    "  period not measured: it takes three zero crossings of the tip, 1.25 periods ({:.2} for mode {number}, whose period is {theory:.4}), and the run lasted {:.4}; give --duration {:.0} or more\n",
+                    1.25 * theory,
+                    self.steps as f64 * self.dt,
+                    (1.25 * theory).ceil()
+                );
+            }
+        }
+        text
+    }
+}
+
+/// The difference from the Bessel period, in %, past which the summary says the amplitude
+/// may be the cause (N = 100 at the default step is within 0.03 %).
+const PERIOD_NOTE_PERCENT: f64 = 0.2;
 
 /// An energy with six decimals, without a "−0.000000" for a value that rounds to zero.
 fn fixed(value: f64) -> String {
