@@ -267,11 +267,10 @@ pub struct StudyPlan {
 impl StudyArgs {
     /// The time steps to run.
     pub fn dts(&self) -> Vec<f64> {
-        self.dts.clone().unwrap_or_else(|| {
-            (0..10)
-                .map(|i| if i % 2 == 0 { 1.0 } else { 3.0 } * 10f64.powi(-6 + i / 2))
-                .collect()
-        })
+        // Written out, so that each prints as it reads (3e-4, not 3.0000000000000003e-4).
+        self.dts
+            .clone()
+            .unwrap_or_else(|| vec![1e-6, 3e-6, 1e-5, 3e-5, 1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2])
     }
 
     /// Checks the flags of `--blow-up`: the one scene and the duration.

@@ -91,3 +91,34 @@ fn seed_runs_from_the_horizontal_are_refused_and_the_chain_runs() {
     let chain = rows.iter().find(|r| r.method == MethodKind::Chain).unwrap();
     assert_eq!(chain.status, Status::Ok);
 }
+
+#[test]
+fn a_small_grid_says_why_it_fits_no_order_and_prints_steps_as_given() {
+    // 0.3 / 1e-4 is 2999.9999999999995 in floating point: the step must still print as 1e-4.
+    let spec = Spec {
+        scene: THIRTY,
+        duration: 0.3,
+        methods: vec![MethodKind::Chain, MethodKind::Rattle],
+        segments: vec![10, 20],
+        dts: vec![1e-3, 1e-4],
+    };
+    let out = scratch("small");
+    let outcome = study::execute(&spec, 40, &out, "test", || {}).expect("the study runs");
+    let findings = std::fs::read_to_string(out.join("findings.md")).unwrap();
+    assert!(
+        findings.contains("No fit for chain, rattle") && findings.contains("two or more N ≥ 20"),
+        "{findings}"
+    );
+    let csv = std::fs::read_to_string(out.join("study.csv")).unwrap();
+    let steps: Vec<&str> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(2).unwrap())
+        .collect();
+    assert_eq!(steps.len(), outcome.rows.len());
+    assert!(
+        steps.iter().all(|k| *k == "1e-3" || *k == "1e-4"),
+        "{steps:?}"
+    );
+    let _ = std::fs::remove_dir_all(out);
+}

@@ -93,7 +93,16 @@ fn tick(v: &f64) -> String {
             text
         }
     } else {
-        format!("{v:.0e}")
+        // Three significant digits, trailing zeros dropped: ticks 5e-4 apart near 2e-3 read
+        // 1.5e-3, 2e-3, 2.5e-3, not 2e-3 twice.
+        let text = format!("{v:.2e}");
+        match text.split_once('e') {
+            Some((mantissa, exponent)) if mantissa.contains('.') => format!(
+                "{}e{exponent}",
+                mantissa.trim_end_matches('0').trim_end_matches('.')
+            ),
+            _ => text,
+        }
     }
 }
 
@@ -606,4 +615,22 @@ fn write_energy_against_k(dir: &Path, rows: &[Row]) -> anyhow::Result<()> {
         (true, true),
         &series
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::tick;
+
+    #[test]
+    fn ticks_of_a_small_linear_axis_are_distinct() {
+        let ticks: Vec<String> = (1..=6).map(|i| tick(&(i as f64 * 5e-4))).collect();
+        assert_eq!(ticks, ["5e-4", "1e-3", "1.5e-3", "2e-3", "2.5e-3", "3e-3"]);
+    }
+
+    #[test]
+    fn ticks_keep_round_values_short() {
+        assert_eq!(tick(&1e-13), "1e-13");
+        assert_eq!(tick(&0.25), "0.25");
+        assert_eq!(tick(&-2e-5), "-2e-5");
+    }
 }

@@ -176,6 +176,20 @@ impl Findings {
                 tip.constant, tip.order
             );
         }
+        let unfitted: Vec<String> = self
+            .boundaries
+            .iter()
+            .map(|(m, _)| *m)
+            .filter(|m| !self.tip_models.iter().any(|(fitted, _)| fitted == m))
+            .map(|m| m.to_string())
+            .collect();
+        if !unfitted.is_empty() {
+            let _ = writeln!(
+                s,
+                "\nNo fit for {}: a fit needs stable runs at two or more N ≥ 20, with a tip error above the reference's; add larger --segments (e.g. 20,40,80).",
+                unfitted.join(", ")
+            );
+        }
         s
     }
 
