@@ -58,10 +58,11 @@ fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
         return Ok(bad_input(&err));
     }
     let stop = stop_on_interrupt()?;
-    let output = match args
-        .output
-        .open("rope", rope::recording::blueprint::blueprint())
-    {
+    let headline = shared_headline(&plans);
+    let output = match args.output.open(
+        "rope",
+        rope::recording::blueprint::blueprint(headline.as_deref()),
+    ) {
         Ok(output) => output,
         Err(err @ OutputError::Save { .. }) => return Ok(bad_input(&err)),
         Err(err) => return Err(err).context("opening the Rerun recording"),
@@ -201,6 +202,16 @@ fn energy_hint(strayed: Strayed) {
             "rope: the {method} method let the energy stray by up to {:.1} % of |E_ref|; the {keeper} method keeps it exactly (--method {keeper})",
             100.0 * deviation
         );
+    }
+}
+
+/// The runs' method, scene, N and k in one line, when every run shares them (the rope
+/// view's title); `None` when they differ (the support's label names each run's).
+fn shared_headline(plans: &[Planned]) -> Option<String> {
+    let headlines: Vec<String> = plans.iter().map(|p| p.plan.headline()).collect();
+    match headlines.as_slice() {
+        [first, rest @ ..] if rest.iter().all(|h| h == first) => Some(first.clone()),
+        _ => None,
     }
 }
 

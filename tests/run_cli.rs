@@ -105,6 +105,44 @@ fn saved_recording_has_every_entity_one_strip_per_segment_and_one_frame_per_log_
 }
 
 #[test]
+fn the_viewer_reads_the_deviation_as_a_logarithm_and_names_the_run() {
+    let dir = Scratch::new("viewer-reads");
+    let rrd = dir.path("v.rrd");
+    let out = rope(&[
+        "run",
+        "--method",
+        "chain",
+        "--segments",
+        "20",
+        "--duration",
+        "1",
+        "--save",
+        rrd.to_str().unwrap(),
+    ]);
+    assert!(out.status.success());
+    let rec = Recording::read(&rrd);
+    let deviation = rec.scalars("energy/deviation");
+    let log = rec.scalars("log10/energy_deviation");
+    assert_eq!(deviation.len(), log.len());
+    assert!(deviation.len() > 30);
+    for (d, l) in deviation.iter().zip(&log) {
+        // The floor is round-off of a double; an exact zero (at the reference step) sits on it.
+        let expected = d.abs().log10().max(-16.0);
+        assert!(
+            (l - expected).abs() < 1e-12,
+            "{d}: log {l}, expected {expected}"
+        );
+    }
+    assert!(rec.scalars("log10/error/tip_estimate").len() > 5);
+    let captions = rec.point_labels("rope/caption");
+    assert_eq!(captions.len(), 1, "{captions:?}");
+    assert!(
+        captions[0].contains("chain") && captions[0].contains("N = 20"),
+        "{captions:?}"
+    );
+}
+
+#[test]
 fn mode_scene_summary_measures_the_period() {
     let dir = Scratch::new("mode");
     let json = dir.path("summary.json");

@@ -10,11 +10,12 @@ use rerun::blueprint::{
 };
 
 /// The whole layout: the views get the window (the blueprint and selection panels start
-/// collapsed; the time panel, which scrubs the run, stays).
-pub fn blueprint() -> Blueprint {
+/// collapsed; the time panel, which scrubs the run, stays). `headline` names the method, N
+/// and k over the rope when every run of the recording shares them.
+pub fn blueprint(headline: Option<&str>) -> Blueprint {
     Blueprint::new(
         Horizontal::new([
-            rope_view().into(),
+            rope_view(headline).into(),
             tension_profile_view().into(),
             Vertical::new([
                 energy_view().into(),
@@ -36,14 +37,19 @@ pub fn blueprint() -> Blueprint {
     )
 }
 
-/// The rope, coloured by tension, with its support, tip, trail and colour scale.
-fn rope_view() -> Spatial2DView {
-    Spatial2DView::new("Rope (coloured by tension)").with_origin("rope")
+/// The rope, coloured by tension, with its support, tip, trail and colour scale; the title
+/// says what is running (the support's label says it too, run by run).
+fn rope_view(headline: Option<&str>) -> Spatial2DView {
+    let title = match headline {
+        Some(headline) => format!("Rope: {headline}"),
+        None => "Rope (coloured by tension)".to_owned(),
+    };
+    Spatial2DView::new(title).with_origin("rope")
 }
 
 /// F(s) along the string, drawn upward over its axes.
 fn tension_profile_view() -> Spatial2DView {
-    Spatial2DView::new("Tension profile F(s), drawn upward").with_origin("tension")
+    Spatial2DView::new("Tension F(s), s: support 0 … tip 1").with_origin("tension")
 }
 
 /// Kinetic, potential and total energy.
@@ -51,31 +57,33 @@ fn energy_view() -> TimeSeriesView {
     TimeSeriesView::new("Energy").with_contents([path::KINETIC, path::POTENTIAL, path::TOTAL])
 }
 
-/// The report's accuracy criterion, (E − E_ref)/|E_ref|.
+/// The report's accuracy criterion, (E − E_ref)/|E_ref|, as its decimal logarithm: Rerun's
+/// plots have no log axis, and a deviation of 1e-12 on a linear one reads "−0.000 000…".
 fn deviation_view() -> TimeSeriesView {
     TimeSeriesView::new(format!(
-        "Energy deviation (relative to step {REFERENCE_STEP})"
+        "log₁₀ |E − E_ref|/|E_ref| (E_ref: step {REFERENCE_STEP})"
     ))
-    .with_origin(path::DEVIATION)
+    .with_origin(path::LOG_DEVIATION)
 }
 
-/// The live error estimate, against the tolerance when there is one.
+/// The live error estimate, against the tolerance when there is one, as decimal logarithms.
 fn error_view() -> TimeSeriesView {
-    TimeSeriesView::new("Estimated error (against the run at N/2)").with_origin("error")
+    TimeSeriesView::new("log₁₀ estimated error (vs. N/2)").with_origin(path::LOG_ERROR)
 }
 
-/// Support tension, tip speed and acceleration, and the run's parameters, as tabs.
+/// Support tension, the run's parameters and events, tip speed and acceleration, and the
+/// joints, as tabs: the text tabs early, where a narrow window still shows their names.
 fn diagnostics() -> Tabs {
     Tabs::new([
         ContainerLike::from(series_view("Support tension F_0", path::SUPPORT_TENSION)),
+        TextDocumentView::new("Parameters")
+            .with_origin(path::PARAMETERS)
+            .into(),
+        TextLogView::new("Events").with_origin(path::EVENTS).into(),
         series_view("Tip speed", path::TIP_SPEED).into(),
         series_view("Tip acceleration", path::TIP_ACCELERATION).into(),
         TimeSeriesView::new("Joints (rattle, midpoint)")
             .with_origin("constraint")
-            .into(),
-        TextLogView::new("Events").with_origin(path::EVENTS).into(),
-        TextDocumentView::new("Parameters")
-            .with_origin(path::PARAMETERS)
             .into(),
     ])
 }

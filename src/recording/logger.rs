@@ -22,6 +22,8 @@ const BATCH_SERIES_CAPACITY: usize = 32;
 pub mod path {
     pub const SEGMENTS: &str = "rope/segments";
     pub const SUPPORT: &str = "rope/support";
+    /// What is running, over the support: method, scene, N and k, run by run.
+    pub const CAPTION: &str = "rope/caption";
     pub const TIP: &str = "rope/tip";
     pub const TRAIL: &str = "rope/trail";
     pub const SCALE: &str = "rope/tension_scale";
@@ -40,6 +42,15 @@ pub mod path {
     pub const SHAPE_ESTIMATE: &str = "error/shape_estimate";
     pub const TOLERANCE: &str = "error/tolerance";
     pub const TOLERANCE_PASSED: &str = "error/tolerance_passed";
+    /// Decimal logarithms of the deviation and the estimates, for plots that read at a
+    /// glance (Rerun's have no log axis).
+    pub const LOG_DEVIATION: &str = "log10/energy_deviation";
+    pub const LOG_ERROR: &str = "log10/error";
+    pub const LOG_TIP_ESTIMATE: &str = "log10/error/tip_estimate";
+    pub const LOG_SHAPE_ESTIMATE: &str = "log10/error/shape_estimate";
+    pub const LOG_TOLERANCE: &str = "log10/error/tolerance";
+    pub const LOG_TOLERANCE_PASSED: &str = "log10/error/tolerance_passed";
+    pub const PROFILE_TICKS: &str = "tension/s_ticks";
     pub const EVENTS: &str = "events";
     pub const PARAMETERS: &str = "parameters";
 }
@@ -51,15 +62,29 @@ pub const STEP: &str = "step";
 /// A time series: its entity path, legend name, colour, and how to read it off a frame.
 type Series = (&'static str, &'static str, [u8; 3], fn(&Frame) -> f64);
 
+/// The decimal logarithm of |x| as the plots draw it: a deviation below [`LOG_FLOOR`] (an
+/// exact zero among them) at the floor, a value a frame does not have (NaN) left out.
+fn log10_abs(x: f64) -> f64 {
+    if x.is_nan() {
+        f64::NAN
+    } else {
+        x.abs().log10().max(LOG_FLOOR)
+    }
+}
+
+/// Where the logarithmic plots stop: round-off of a double.
+const LOG_FLOOR: f64 = -16.0;
+
 /// Every time series the recording carries, styled once and filled by each batch.
-const SERIES: [Series; 11] = [
+const SERIES: [Series; 14] = [
     (path::KINETIC, "kinetic", [230, 120, 30], |f| {
         f.energy.kinetic()
     }),
     (path::POTENTIAL, "potential", [60, 120, 220], |f| {
         f.energy.potential
     }),
-    (path::TOTAL, "total", [220, 220, 220], |f| f.energy.total()),
+    // Mid grey: it reads on the viewer's dark theme and on the browser's light one.
+    (path::TOTAL, "total", [125, 125, 125], |f| f.energy.total()),
     (
         path::DEVIATION,
         "(E − E_ref)/|E_ref|",
@@ -101,6 +126,24 @@ const SERIES: [Series; 11] = [
         "estimated shape error",
         [110, 110, 200],
         |f| f.error_estimate.map_or(f64::NAN, |e| e.shape),
+    ),
+    (
+        path::LOG_DEVIATION,
+        "log₁₀ |E − E_ref|/|E_ref|",
+        [200, 40, 40],
+        |f| log10_abs(f.energy_deviation),
+    ),
+    (
+        path::LOG_TIP_ESTIMATE,
+        "log₁₀ estimated tip error",
+        [200, 40, 160],
+        |f| log10_abs(f.error_estimate.map_or(f64::NAN, |e| e.tip)),
+    ),
+    (
+        path::LOG_SHAPE_ESTIMATE,
+        "log₁₀ estimated shape error",
+        [110, 110, 200],
+        |f| log10_abs(f.error_estimate.map_or(f64::NAN, |e| e.shape)),
     ),
 ];
 
@@ -156,6 +199,14 @@ impl RopeLogger {
                 .with_colors([rerun::Color::from_rgb(90, 90, 90)])
                 .with_labels(["support"]),
         )?;
+        // The caption's text is the run's headline, logged as each run begins.
+        rec.log_static(
+            path::CAPTION,
+            &rerun::Points2D::new([[0.0f32, -0.25]])
+                .with_radii([0.001])
+                .with_colors([rerun::Color::from_rgb(140, 140, 140)])
+                .with_show_labels(true),
+        )?;
         Self::log_scale(&rec)?;
         Self::log_profile_axes(&rec)?;
         // Styling that never changes is logged once; frames carry only what moves.
@@ -181,19 +232,28 @@ impl RopeLogger {
                 .with_radii([0.008])
                 .with_colors([rerun::Color::from_rgb(230, 150, 0)]),
         )?;
-        rec.log_static(
-            path::TOLERANCE,
-            &rerun::SeriesLines::new()
-                .with_names(["tolerance"])
-                .with_colors([rerun::Color::from_rgb(200, 40, 40)]),
-        )?;
-        rec.log_static(
-            path::TOLERANCE_PASSED,
-            &rerun::SeriesPoints::new()
-                .with_names(["passed the tolerance"])
-                .with_colors([rerun::Color::from_rgb(200, 40, 40)])
-                .with_marker_sizes([6.0]),
-        )?;
+        for (tolerance, passed, name) in [
+            (path::TOLERANCE, path::TOLERANCE_PASSED, "tolerance"),
+            (
+                path::LOG_TOLERANCE,
+                path::LOG_TOLERANCE_PASSED,
+                "log₁₀ tolerance",
+            ),
+        ] {
+            rec.log_static(
+                tolerance,
+                &rerun::SeriesLines::new()
+                    .with_names([name])
+                    .with_colors([rerun::Color::from_rgb(200, 40, 40)]),
+            )?;
+            rec.log_static(
+                passed,
+                &rerun::SeriesPoints::new()
+                    .with_names(["passed the tolerance"])
+                    .with_colors([rerun::Color::from_rgb(200, 40, 40)])
+                    .with_marker_sizes([6.0]),
+            )?;
+        }
         for (entity, name, [r, g, b], _) in SERIES {
             rec.log_static(
                 entity,
@@ -243,7 +303,7 @@ impl RopeLogger {
     fn log_profile_axes(rec: &RecordingStream) -> rerun::RecordingStreamResult<()> {
         let grey = rerun::Color::from_unmultiplied_rgba(160, 160, 160, 140);
         let mut strips = vec![[[0.0f32, 0.0], [1.0, 0.0]], [[0.0, 0.0], [0.0, -2.0]]];
-        let mut labels = vec!["s (support 0 … tip 1)".to_owned(), String::new()];
+        let mut labels = vec![String::new(), String::new()];
         for f in [0.5f32, 1.0, 1.5, 2.0] {
             strips.push([[0.0, -f], [1.0, -f]]);
             labels.push(format!("F = {f}"));
@@ -254,6 +314,19 @@ impl RopeLogger {
                 .with_radii([0.002])
                 .with_colors([grey])
                 .with_labels(labels),
+        )?;
+        // The s axis's ticks (y points down); the view's title names the axis.
+        let ticks = [0.0f32, 0.25, 0.5, 0.75, 1.0];
+        // Just above the axis: the view fits its data, and a label below it would be cut.
+        let points: Vec<[f32; 2]> = ticks.iter().map(|&s| [s, -0.08]).collect();
+        let names: Vec<String> = ticks.iter().map(|s| format!("s = {s}")).collect();
+        rec.log_static(
+            path::PROFILE_TICKS,
+            &rerun::Points2D::new(points)
+                .with_radii([0.006])
+                .with_colors([grey])
+                .with_labels(names)
+                .with_show_labels(true),
         )
     }
 
@@ -290,11 +363,16 @@ impl RopeLogger {
                 [self.time_offset + f.time],
                 [(self.step_offset + f.step) as i64],
             );
-            self.rec.send_columns(
-                path::TOLERANCE_PASSED,
-                times.clone(),
-                rerun::Scalars::new([tip]).columns_of_unit_batches()?,
-            )?;
+            for (entity, value) in [
+                (path::TOLERANCE_PASSED, tip),
+                (path::LOG_TOLERANCE_PASSED, log10_abs(tip)),
+            ] {
+                self.rec.send_columns(
+                    entity,
+                    times.clone(),
+                    rerun::Scalars::new([value]).columns_of_unit_batches()?,
+                )?;
+            }
             self.rec.send_columns(
                 path::EVENTS,
                 times,
@@ -419,11 +497,16 @@ impl RopeLogger {
             )?;
         }
         if let Some(eps) = self.tolerance {
-            self.rec.send_columns(
-                path::TOLERANCE,
-                timelines(rows.iter().map(|r| r.0), rows.iter().map(|r| r.1)),
-                rerun::Scalars::new(rows.iter().map(|_| eps)).columns_of_unit_batches()?,
-            )?;
+            for (entity, value) in [
+                (path::TOLERANCE, eps),
+                (path::LOG_TOLERANCE, log10_abs(eps)),
+            ] {
+                self.rec.send_columns(
+                    entity,
+                    timelines(rows.iter().map(|r| r.0), rows.iter().map(|r| r.1)),
+                    rerun::Scalars::new(rows.iter().map(|_| value)).columns_of_unit_batches()?,
+                )?;
+            }
         }
         self.series.clear();
         Ok(())
@@ -445,6 +528,13 @@ impl FrameSink for RopeLogger {
         self.send_series()?;
         self.trail.clear();
         self.tolerance = plan.tolerance;
+        self.rec.send_columns(
+            path::CAPTION,
+            timelines([self.time_offset], [self.step_offset as i64]),
+            rerun::Points2D::update_fields()
+                .with_labels([plan.headline()])
+                .columns_of_unit_batches()?,
+        )?;
         self.rec.send_columns(
             path::PARAMETERS,
             timelines([self.time_offset], [self.step_offset as i64]),

@@ -192,11 +192,35 @@ impl RunPlan {
         )
     }
 
+    /// The run in one line, as the viewer shows it over the rope: "chain, release at 30°,
+    /// N = 100, k = 5e-4".
+    pub fn headline(&self) -> String {
+        format!(
+            "{}, {}, N = {}, k = {}",
+            self.method,
+            self.scene,
+            self.segments,
+            short_step(self.dt)
+        )
+    }
+
     /// The initial angle at the support, in degrees below the horizontal.
     pub fn angle_deg(&self) -> f64 {
         match self.scene {
             Scene::Release { angle_deg } => angle_deg,
             Scene::Mode { .. } => 90.0,
         }
+    }
+}
+
+/// A time step in at most four significant digits, trailing zeros dropped: 5e-4, 3.266e-3.
+pub fn short_step(dt: f64) -> String {
+    let text = format!("{dt:.3e}");
+    match text.split_once('e') {
+        Some((mantissa, exponent)) if mantissa.contains('.') => format!(
+            "{}e{exponent}",
+            mantissa.trim_end_matches('0').trim_end_matches('.')
+        ),
+        _ => text,
     }
 }
