@@ -139,7 +139,7 @@ pub enum ConfigError {
     #[error("reference = {path}: {reason}; write one with `rope study --reference-only --out DIR`")]
     ReferenceUnreadable { path: String, reason: String },
     #[error(
-        "--{flag}: the {scene} scene does not take it (it would be ignored); the release scene takes --angle, the mode scene --mode-number and --amplitude (choose with --scene)"
+        "{flag}: the {scene} scene does not take --{flag} (it would be ignored); the release scene takes --angle, the mode scene --mode-number and --amplitude (choose with --scene)"
     )]
     ForeignSceneFlag {
         flag: &'static str,

@@ -176,7 +176,7 @@ proptest! {
         repeat in proptest::option::of(proptest::option::of(count())),
     ) {
         let mut args: Vec<String> = ["rope", "run", "--segments", &segments, "--duration", &duration,
-            "--angle", &angle, "--log-rate", &log_rate].iter().map(|s| s.to_string()).collect();
+            "--log-rate", &log_rate].iter().map(|s| s.to_string()).collect();
         let mut flag = |name: &str, value: Option<&String>| {
             args.push(format!("--{name}"));
             if let Some(value) = value { args.push(value.clone()); }
@@ -185,10 +185,14 @@ proptest! {
         if let Some(speed) = &realtime { flag("realtime", Some(speed)); }
         if let Some(eps) = &tolerance { flag("tolerance", Some(eps)); }
         if let Some(m) = method { flag("method", Some(&m.to_owned())); }
-        if let Some((number, amplitude)) = &mode {
-            flag("scene", Some(&"mode".to_owned()));
-            flag("mode-number", Some(&number.to_string()));
-            flag("amplitude", Some(amplitude));
+        // Each scene with its own flags (a flag of the other scene is refused: its own test).
+        match &mode {
+            Some((number, amplitude)) => {
+                flag("scene", Some(&"mode".to_owned()));
+                flag("mode-number", Some(&number.to_string()));
+                flag("amplitude", Some(amplitude));
+            }
+            None => flag("angle", Some(&angle)),
         }
         if let Some(passes) = &repeat { flag("loop", passes.as_ref()); }
         let Ok(cli) = Cli::try_parse_from(&args) else {
