@@ -215,7 +215,13 @@ impl RunPlan {
 
 /// A time step in at most four significant digits, trailing zeros dropped: 5e-4, 3.266e-3.
 pub fn short_step(dt: f64) -> String {
-    let text = format!("{dt:.3e}");
+    trimmed_scientific(dt, 3)
+}
+
+/// `value` in scientific notation with at most `decimals` digits after the point, trailing
+/// zeros dropped: 1.5e-3, 2e-3 (not 2.00e-3).
+pub fn trimmed_scientific(value: f64, decimals: usize) -> String {
+    let text = format!("{value:.decimals$e}");
     match text.split_once('e') {
         Some((mantissa, exponent)) if mantissa.contains('.') => format!(
             "{}e{exponent}",

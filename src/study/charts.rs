@@ -78,8 +78,8 @@ pub(crate) fn legend<'a, 'b, DB: DrawingBackend + 'a, CT: plotters::coord::Coord
         .draw()
 }
 
-/// A tick label: plain for ordinary magnitudes, one-digit scientific otherwise (log axes
-/// land on values like 9.999999999999998e-5 that should read 1e-4).
+/// A tick label: plain for ordinary magnitudes, scientific with three significant digits
+/// otherwise (log axes land on values like 9.999999999999998e-5 that should read 1e-4).
 fn tick(v: &f64) -> String {
     let a = v.abs();
     if a == 0.0 {
@@ -95,14 +95,7 @@ fn tick(v: &f64) -> String {
     } else {
         // Three significant digits, trailing zeros dropped: ticks 5e-4 apart near 2e-3 read
         // 1.5e-3, 2e-3, 2.5e-3, not 2e-3 twice.
-        let text = format!("{v:.2e}");
-        match text.split_once('e') {
-            Some((mantissa, exponent)) if mantissa.contains('.') => format!(
-                "{}e{exponent}",
-                mantissa.trim_end_matches('0').trim_end_matches('.')
-            ),
-            _ => text,
-        }
+        crate::run::config::trimmed_scientific(*v, 2)
     }
 }
 

@@ -103,36 +103,37 @@ impl Recording {
             .unwrap_or(0)
     }
 
-    /// The scalars logged on the timelines for `entity`, in the order logged.
-    pub fn scalars(&self, entity: &str) -> Vec<f64> {
-        let scalar = rerun::Scalars::descriptor_scalars().component;
+    /// The values of one component logged on the timelines for `entity`, in the order
+    /// logged, each read by `read`.
+    fn temporal_values<C: rerun::Component, T>(
+        &self,
+        entity: &str,
+        component: rerun::ComponentIdentifier,
+        read: impl Fn(&C) -> T + Copy,
+    ) -> Vec<T> {
         self.chunks
             .get(entity)
             .into_iter()
             .flatten()
             .filter(|c| !c.is_static())
             .flat_map(|c| {
-                c.iter_component::<rerun::components::Scalar>(scalar)
-                    .flat_map(|row| row.iter().map(|s| s.0.0).collect::<Vec<f64>>())
-                    .collect::<Vec<f64>>()
+                c.iter_component::<C>(component)
+                    .flat_map(|row| row.iter().map(read).collect::<Vec<T>>())
+                    .collect::<Vec<T>>()
             })
             .collect()
+    }
+
+    /// The scalars logged on the timelines for `entity`, in the order logged.
+    pub fn scalars(&self, entity: &str) -> Vec<f64> {
+        let scalar = rerun::Scalars::descriptor_scalars().component;
+        self.temporal_values(entity, scalar, |s: &rerun::components::Scalar| s.0.0)
     }
 
     /// The labels logged on the timelines for the points of `entity`.
     pub fn point_labels(&self, entity: &str) -> Vec<String> {
         let labels = rerun::Points2D::descriptor_labels().component;
-        self.chunks
-            .get(entity)
-            .into_iter()
-            .flatten()
-            .filter(|c| !c.is_static())
-            .flat_map(|c| {
-                c.iter_component::<rerun::components::Text>(labels)
-                    .flat_map(|row| row.iter().map(|t| t.to_string()).collect::<Vec<String>>())
-                    .collect::<Vec<String>>()
-            })
-            .collect()
+        self.temporal_values(entity, labels, |t: &rerun::components::Text| t.to_string())
     }
 
     pub fn has(&self, entity: &str) -> bool {
