@@ -463,9 +463,11 @@ pub struct RunArgs {
     pub tolerance: Option<f64>,
 
     /// Numerical method [default: the report's (seed); for --duration inf, one that stays
-    /// stable for ever (chain), as printed at the start].
-    #[arg(long, value_enum)]
-    pub method: Option<MethodKind>,
+    /// stable for ever (chain), as printed at the start]. A list (e.g. seed,chain,rattle)
+    /// runs the methods side by side on the same frame times, in one recording: each at
+    /// --segments and its own default step (or --dt), brought down onto the frames' grid.
+    #[arg(long, value_enum, value_delimiter = ',')]
+    pub method: Vec<MethodKind>,
 
     /// Frames logged per time unit.
     #[arg(
@@ -524,8 +526,21 @@ fn parse_passes(text: &str) -> Result<Passes, String> {
 /// One run to make, and what `--tolerance` chose for it, if it chose.
 #[derive(Clone, Debug)]
 pub struct Planned {
+    /// The run of the first method named (the only one, but for a comparison).
     pub plan: RunPlan,
     pub choice: Option<Choice>,
+    /// The runs of the other methods of a comparison (`--method A,B,…`), side by side with
+    /// `plan` on the same frame times; empty for a run of one method.
+    pub others: Vec<RunPlan>,
+}
+
+impl Planned {
+    /// Every run of this scene: `plan`, then the others of a comparison.
+    pub fn lanes(&self) -> Vec<RunPlan> {
+        std::iter::once(self.plan.clone())
+            .chain(self.others.iter().cloned())
+            .collect()
+    }
 }
 
 impl RunArgs {
@@ -542,13 +557,31 @@ impl RunArgs {
                 "0 passes: give at least 1, or --loop alone to repeat until Ctrl-C".to_owned(),
             ));
         }
+        self.check_methods()?;
         scenes.into_iter().map(|scene| self.plan(scene)).collect()
     }
 
-    /// The method asked for, or the default for the duration.
+    /// The method asked for (the first of a list), or the default for the duration.
     pub fn method(&self) -> MethodKind {
         self.method
+            .first()
+            .copied()
             .unwrap_or_else(|| MethodKind::default_for(self.duration))
+    }
+
+    /// Whether several methods are to run side by side.
+    pub fn compares(&self) -> bool {
+        self.method.len() > 1
+    }
+
+    /// Checks a list of methods: each named once.
+    fn check_methods(&self) -> Result<(), ConfigError> {
+        for (i, m) in self.method.iter().enumerate() {
+            if self.method[..i].contains(m) {
+                return Err(ConfigError::MethodTwice(m.name()));
+            }
+        }
+        Ok(())
     }
 
     /// How many times to go through the list of scenes; `None` for until Ctrl-C.
@@ -560,10 +593,12 @@ impl RunArgs {
         }
     }
 
-    /// Validates the flags for one scene; with `--tolerance`, also says what the rule chose.
+    /// Validates the flags for one scene; with `--tolerance`, also says what the rule chose;
+    /// with a list of methods, validates each (naming the one that cannot run).
     fn plan(&self, scene: Scene) -> Result<Planned, ConfigError> {
         let asked = RunConfig {
             method: self.method(),
+            shared_frames: self.compares(),
             scene,
             segments: self.segments,
             dt: self.dt,
@@ -588,9 +623,31 @@ impl RunArgs {
                 (chosen, Some(choice))
             }
         };
+        let lane = |method: MethodKind| {
+            RunConfig {
+                method,
+                ..config.clone()
+            }
+            .validate()
+            .map_err(|err| match self.compares() {
+                true => ConfigError::MethodCannotRun {
+                    method: method.name(),
+                    reason: err.to_string(),
+                },
+                false => err,
+            })
+        };
+        let plan = lane(config.method)?;
+        let others = self
+            .method
+            .iter()
+            .skip(1)
+            .map(|&m| lane(m))
+            .collect::<Result<_, _>>()?;
         Ok(Planned {
-            plan: config.validate()?,
+            plan,
             choice,
+            others,
         })
     }
 

@@ -145,6 +145,15 @@ pub enum ConfigError {
         flag: &'static str,
         scene: &'static str,
     },
+    #[error("method: {0} is named twice; name each method once (e.g. --method seed,chain)")]
+    MethodTwice(&'static str),
+    #[error(
+        "method = {method}: cannot run side by side with the others: {reason}; leave it out of --method"
+    )]
+    MethodCannotRun {
+        method: &'static str,
+        reason: String,
+    },
     #[error("mode-number = {0}: must be 1, 2, 3 or 4")]
     ModeNumber(u32),
     #[error(

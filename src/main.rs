@@ -4,6 +4,7 @@
 use anyhow::Context as _;
 use clap::Parser as _;
 use rope::cli::{Cli, Command, Planned, RunArgs, StudyArgs, check_writable_file, writable_dir};
+use rope::methods::MethodKind;
 use rope::recording::destinations::Output;
 use rope::recording::error::OutputError;
 use rope::recording::logger::RopeLogger;
@@ -59,10 +60,9 @@ fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
     }
     let stop = stop_on_interrupt()?;
     let headline = shared_headline(&plans);
-    let output = match args.output.open(
-        "rope",
-        rope::recording::blueprint::blueprint(headline.as_deref()),
-    ) {
+    let lanes = plans.first().map(Planned::lanes).unwrap_or_default();
+    let layout = rope::recording::blueprint::blueprint(headline.as_deref(), &lanes);
+    let output = match args.output.open("rope", layout) {
         Ok(output) => output,
         Err(err @ OutputError::Save { .. }) => return Ok(bad_input(&err)),
         Err(err) => return Err(err).context("opening the Rerun recording"),
@@ -108,7 +108,7 @@ fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
 /// warns of a step past a method's limit and of a run the method is known not to last.
 fn announce(args: &RunArgs, plans: &[Planned]) {
     let several = plans.len() > 1;
-    for Planned { plan, choice } in plans {
+    for Planned { plan, choice, .. } in plans {
         let Some(choice) = choice else { continue };
         let scene = if several {
             format!(" ({})", plan.scene)
@@ -138,7 +138,24 @@ fn announce(args: &RunArgs, plans: &[Planned]) {
     if let Some(Planned { plan, .. }) = plans.first() {
         let method = plan.method.descriptor();
         let limit = method.stability_limit(plan.segments);
-        if args.tolerance.is_none() && args.dt.is_none() {
+        let others = plans.first().map_or(&[][..], |p| &p.others[..]);
+        if !others.is_empty() {
+            let steps: Vec<String> = std::iter::once(plan)
+                .chain(others)
+                .map(|p| format!("{} k = {:.3e}", p.method, p.dt))
+                .collect();
+            eprintln!(
+                "rope: side by side at N = {}, each at {} brought down onto the frames' grid ({} per time unit) so that all share every frame time: {}",
+                plan.segments,
+                if args.dt.is_some() {
+                    "--dt"
+                } else {
+                    "its default step"
+                },
+                plan.log_rate,
+                steps.join(", ")
+            );
+        } else if args.tolerance.is_none() && args.dt.is_none() {
             eprintln!(
                 "rope: --dt not given: using k = {:.3e} for the {} method at N = {} (estimated stability limit {limit:.3e}: {})",
                 plan.dt, plan.method, plan.segments, method.past_limit
@@ -153,32 +170,50 @@ fn announce(args: &RunArgs, plans: &[Planned]) {
                 method.past_limit
             );
         }
-        if let Some(blow_up) = method.blow_up_at(plan.segments)
-            && plan.duration > blow_up.earliest
-        {
-            let stable: Vec<&str> = rope::methods::MethodKind::ALL
-                .iter()
-                .filter(|m| m.descriptor().blow_up.is_empty())
-                .map(|m| m.name())
-                .collect();
-            eprintln!(
-                "rope: warning: a run to t = {} will most likely stop early: the {} method blows up in a long run at any step (from the release at 30° at N = {}, `rope study --blow-up 200` saw it diverge between t = {} and {}); for a long run use --method {}",
-                plan.duration,
-                plan.method,
-                blow_up.segments,
-                blow_up.earliest,
-                blow_up.latest,
-                stable.join(" or ")
-            );
+        for lane in std::iter::once(plan).chain(others) {
+            warn_of_blow_up(lane, !others.is_empty());
         }
     }
     // (--tolerance with an endless run was refused before.)
-    if args.method.is_none() && args.duration.is_infinite() {
+    if args.method.is_empty() && args.duration.is_infinite() {
         eprintln!(
             "rope: an endless run uses the {} method, which stays stable for ever (--method to choose another)",
             args.method()
         );
     }
+}
+
+/// Warns of a run longer than its method is known to last (the blow-up map's earliest at
+/// its N), suggesting the methods that last; side by side, says the others go on.
+fn warn_of_blow_up(plan: &rope::run::RunPlan, side_by_side: bool) {
+    let method = plan.method.descriptor();
+    let Some(blow_up) = method.blow_up_at(plan.segments) else {
+        return;
+    };
+    if plan.duration <= blow_up.earliest {
+        return;
+    }
+    let seen = format!(
+        "the {} method blows up in a long run at any step (from the release at 30° at N = {}, `rope study --blow-up 200` saw it diverge between t = {} and {})",
+        plan.method, blow_up.segments, blow_up.earliest, blow_up.latest
+    );
+    if side_by_side {
+        eprintln!(
+            "rope: note: side by side, {} will most likely stop before t = {}: {seen}; the others go on",
+            plan.method, plan.duration
+        );
+        return;
+    }
+    let stable: Vec<&str> = MethodKind::ALL
+        .iter()
+        .filter(|m| m.descriptor().blow_up.is_empty())
+        .map(|m| m.name())
+        .collect();
+    eprintln!(
+        "rope: warning: a run to t = {} will most likely stop early: {seen}; for a long run use --method {}",
+        plan.duration,
+        stable.join(" or ")
+    );
 }
 
 /// The method whose energy strayed most, and by how much relative to |E_ref|, among the
@@ -206,8 +241,12 @@ fn energy_hint(strayed: Strayed) {
 }
 
 /// The runs' method, scene, N and k in one line, when every run shares them (the rope
-/// view's title); `None` when they differ (the support's label names each run's).
+/// view's title); `None` when they differ, or for methods side by side (the caption over
+/// the support names each run's).
 fn shared_headline(plans: &[Planned]) -> Option<String> {
+    if plans.iter().any(|p| !p.others.is_empty()) {
+        return None;
+    }
     let headlines: Vec<String> = plans.iter().map(|p| p.plan.headline()).collect();
     match headlines.as_slice() {
         [first, rest @ ..] if rest.iter().all(|h| h == first) => Some(first.clone()),
@@ -243,20 +282,33 @@ fn run_passes(
     let mut pass = 0;
     'passes: while args.passes().is_none_or(|passes| pass < passes) {
         pass += 1;
-        for Planned { plan, .. } in plans {
+        for planned in plans {
+            let plan = &planned.plan;
             let progress = Progress::new(plan.duration);
-            let summary = rope::run::pipeline::run(plan, logger, stop, &|frame| {
+            let on_frame = |frame: &rope::run::Frame| {
                 progress.at(frame.time);
                 if frame.tolerance_exceeded {
                     progress.say(&tolerance_notice(plan, frame));
                 }
-            })?;
+            };
+            let summary = if planned.others.is_empty() {
+                rope::run::pipeline::run(plan, logger, stop, &on_frame)?
+            } else {
+                let lanes = rope::run::lanes::run(&planned.lanes(), logger, stop, &on_frame)?;
+                progress.finish();
+                side_by_side(lanes)?
+            };
             progress.finish();
             if several {
                 // Each run of several says all it has as it ends; the last is not repeated.
                 eprintln!("{}", summary.human());
             }
-            let ended = summary.status != Status::Ok || summary.recording_error.is_some();
+            // Side by side, a method that diverged stops alone: the others, and the loop, go on.
+            let failed = match summary.methods.as_slice() {
+                [] => summary.status != Status::Ok,
+                lanes => lanes.iter().all(|l| l.status != Status::Ok),
+            };
+            let ended = failed || summary.recording_error.is_some();
             let deviation = summary.energy.max_rel_deviation;
             if !summary.method.descriptor().keeps_energy
                 && strayed.is_none_or(|(_, worst)| deviation > worst)
@@ -270,6 +322,14 @@ fn run_passes(
         }
     }
     Ok((last.context("no run was made")?, strayed))
+}
+
+/// The summary of methods side by side: the first one's fields, and each one's under
+/// `methods` (its text says each one's lines, and how far each strayed).
+fn side_by_side(lanes: Vec<Summary>) -> anyhow::Result<Summary> {
+    let mut first = lanes.first().cloned().context("no method was run")?;
+    first.methods = lanes;
+    Ok(first)
 }
 
 /// What a run says, once, when its error estimate passes the tolerance.
@@ -310,7 +370,17 @@ fn exit_code(summary: &Summary) -> ExitCode {
         eprintln!("rope: error: the recording is incomplete: {err}");
         return ExitCode::FAILURE;
     }
-    match summary.status {
+    // Side by side, a method that diverged is enough for the exit status to say so.
+    let status = match summary
+        .methods
+        .iter()
+        .map(|m| m.status)
+        .find(|s| *s != Status::Ok)
+    {
+        Some(status) => status,
+        None => summary.status,
+    };
+    match status {
         Status::Ok => ExitCode::SUCCESS,
         Status::Diverged => ExitCode::from(EXIT_DIVERGED),
         Status::Interrupted => ExitCode::from(EXIT_INTERRUPTED),

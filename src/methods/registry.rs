@@ -48,6 +48,26 @@ impl MethodKind {
     /// in h (Richardson's extrapolation needs one) and with no stability limit to respect.
     pub const REFERENCE: MethodKind = MethodKind::Chain;
 
+    /// The methods from the most accurate to the least, for a run that compares several: the
+    /// highest-ranked of a comparison is the one the others' disagreement is measured from.
+    /// The chain first: it is the study's reference (RK4 is fourth order in k, so at its
+    /// default step its error is the rods' spatial one); then `midpoint` (energy exact), then
+    /// `rattle` (second order in k), then the report's first-order scheme.
+    pub const BY_ACCURACY: [MethodKind; 4] = [
+        MethodKind::Chain,
+        MethodKind::Midpoint,
+        MethodKind::Rattle,
+        MethodKind::Seed,
+    ];
+
+    /// Where the method stands in [`MethodKind::BY_ACCURACY`] (0 the most accurate).
+    pub fn accuracy_rank(self) -> usize {
+        Self::BY_ACCURACY
+            .iter()
+            .position(|&m| m == self)
+            .unwrap_or(Self::BY_ACCURACY.len())
+    }
+
     /// What the method says of itself: the registry, one line per method.
     pub fn descriptor(self) -> &'static Descriptor {
         match self {

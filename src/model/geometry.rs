@@ -53,6 +53,18 @@ pub fn at_arc_length(nodes: &[Point], s: f64) -> Point {
     nodes[i] + frac * (nodes[i + 1] - nodes[i])
 }
 
+/// The largest distance between two strings at equal arc length, over the nodes of the finer
+/// (`a` and `b` are node lists, support … tip, of any two segment counts).
+pub fn largest_distance(a: &[Point], b: &[Point]) -> f64 {
+    let points = a.len().max(b.len()).max(2);
+    (0..points)
+        .map(|j| {
+            let s = j as f64 / (points - 1) as f64;
+            (at_arc_length(a, s) - at_arc_length(b, s)).norm()
+        })
+        .fold(0.0, f64::max)
+}
+
 /// The tip (free end) position.
 pub fn tip(angles: &[f64]) -> Point {
     let h = 1.0 / angles.len() as f64;
@@ -159,6 +171,21 @@ mod tests {
         assert_eq!(at_arc_length(&nodes, 0.25), Point::new(0.25, 0.0));
         assert_eq!(at_arc_length(&nodes, 0.75), Point::new(0.5, 0.25));
         assert_eq!(at_arc_length(&nodes, 1.0), nodes[2]);
+    }
+
+    #[test]
+    fn largest_distance_is_at_equal_arc_length_whatever_the_segment_counts() {
+        // A straight string along x against one bent down at its middle, at 2 and 4 segments.
+        let straight = [0.0, 0.25, 0.5, 0.75, 1.0].map(|x| Point::new(x, 0.0));
+        let bent = [
+            Point::new(0.0, 0.0),
+            Point::new(0.5, 0.0),
+            Point::new(0.5, 0.5),
+        ];
+        // At the tip (s = 1): (1, 0) against (0.5, 0.5).
+        let tip_gap = (0.5f64 * 0.5 + 0.5 * 0.5).sqrt();
+        assert!((largest_distance(&straight, &bent) - tip_gap).abs() < 1e-15);
+        assert_eq!(largest_distance(&straight, &straight), 0.0);
     }
 
     #[test]

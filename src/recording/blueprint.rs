@@ -2,6 +2,7 @@
 //! the right. One small function per view.
 
 use super::logger::{SIM_TIME, path};
+use crate::run::RunPlan;
 use crate::run::simulate::REFERENCE_STEP;
 use rerun::blueprint::components::PanelState;
 use rerun::blueprint::{
@@ -11,19 +12,29 @@ use rerun::blueprint::{
 
 /// The whole layout: the views get the window (the blueprint and selection panels start
 /// collapsed; the time panel, which scrubs the run, stays). `headline` names the method, N
-/// and k over the rope when every run of the recording shares them.
-pub fn blueprint(headline: Option<&str>) -> Blueprint {
+/// and k over the rope when every run of the recording shares them. With several methods
+/// side by side (`lanes`, a plan each), their ropes share the rope view, each named at its
+/// tip, and the energy panel gives way to their distance from the most accurate one's string.
+pub fn blueprint(headline: Option<&str>, lanes: &[RunPlan]) -> Blueprint {
+    let plots = match lanes {
+        [_, _, ..] => Vertical::new([
+            deviation_view().into(),
+            disagreement_view(lanes).into(),
+            error_view().into(),
+            diagnostics(true).into(),
+        ]),
+        _ => Vertical::new([
+            energy_view().into(),
+            deviation_view().into(),
+            error_view().into(),
+            diagnostics(false).into(),
+        ]),
+    };
     Blueprint::new(
         Horizontal::new([
             rope_view(headline).into(),
             tension_profile_view().into(),
-            Vertical::new([
-                energy_view().into(),
-                deviation_view().into(),
-                error_view().into(),
-                diagnostics().into(),
-            ])
-            .into(),
+            plots.into(),
         ])
         .with_column_shares([4.0, 3.0, 4.0]),
     )
@@ -71,10 +82,21 @@ fn error_view() -> TimeSeriesView {
     TimeSeriesView::new("log₁₀ estimated error (vs. N/2)").with_origin(path::LOG_ERROR)
 }
 
+/// How far each method's string is from the most accurate one's, as a decimal logarithm.
+fn disagreement_view(lanes: &[RunPlan]) -> TimeSeriesView {
+    let best = lanes
+        .iter()
+        .min_by_key(|p| p.method.accuracy_rank())
+        .map_or("the most accurate", |p| p.method.name());
+    TimeSeriesView::new(format!("log₁₀ distance from {best}'s string (at equal s)"))
+        .with_origin(path::LOG_DISAGREEMENT)
+}
+
 /// Support tension, the run's parameters and events, tip speed and acceleration, and the
 /// joints, as tabs: the text tabs early, where a narrow window still shows their names.
-fn diagnostics() -> Tabs {
-    Tabs::new([
+/// Side by side, the methods' total energies join them.
+fn diagnostics(side_by_side: bool) -> Tabs {
+    let mut tabs = vec![
         ContainerLike::from(series_view("Support tension F_0", path::SUPPORT_TENSION)),
         TextDocumentView::new("Parameters")
             .with_origin(path::PARAMETERS)
@@ -85,7 +107,11 @@ fn diagnostics() -> Tabs {
         TimeSeriesView::new("Joints (rattle, midpoint)")
             .with_origin("constraint")
             .into(),
-    ])
+    ];
+    if side_by_side {
+        tabs.insert(3, series_view("Total energy", path::TOTAL).into());
+    }
+    Tabs::new(tabs)
 }
 
 /// A time series view of one entity.

@@ -4,6 +4,7 @@
 
 use super::colour::tension_colour;
 use super::error::RecordingError;
+use crate::error::Diverged;
 use crate::model::Point;
 use crate::run::{Frame, FrameSink, RunPlan};
 use rerun::RecordingStream;
@@ -24,6 +25,8 @@ pub mod path {
     pub const SUPPORT: &str = "rope/support";
     /// What is running, over the support: method, scene, N and k, run by run.
     pub const CAPTION: &str = "rope/caption";
+    /// Side by side: which colour is which method, at the rope view's top left.
+    pub const LEGEND: &str = "rope/legend";
     pub const TIP: &str = "rope/tip";
     pub const TRAIL: &str = "rope/trail";
     pub const SCALE: &str = "rope/tension_scale";
@@ -51,6 +54,10 @@ pub mod path {
     pub const LOG_TOLERANCE: &str = "log10/error/tolerance";
     pub const LOG_TOLERANCE_PASSED: &str = "log10/error/tolerance_passed";
     pub const PROFILE_TICKS: &str = "tension/s_ticks";
+    /// Several methods side by side: each one's distance from the most accurate one's
+    /// string (the entity paths of each method end in `/{method}`).
+    pub const DISAGREEMENT: &str = "disagreement";
+    pub const LOG_DISAGREEMENT: &str = "log10/disagreement";
     pub const EVENTS: &str = "events";
     pub const PARAMETERS: &str = "parameters";
 }
@@ -76,7 +83,7 @@ fn log10_abs(x: f64) -> f64 {
 const LOG_FLOOR: f64 = -16.0;
 
 /// Every time series the recording carries, styled once and filled by each batch.
-const SERIES: [Series; 14] = [
+const SERIES: [Series; 16] = [
     (path::KINETIC, "kinetic", [230, 120, 30], |f| {
         f.energy.kinetic()
     }),
@@ -145,7 +152,80 @@ const SERIES: [Series; 14] = [
         [110, 110, 200],
         |f| log10_abs(f.error_estimate.map_or(f64::NAN, |e| e.shape)),
     ),
+    // Only a method side by side with a more accurate one has these.
+    (
+        path::DISAGREEMENT,
+        "distance from the most accurate",
+        [120, 120, 120],
+        |f| disagreement(f),
+    ),
+    (
+        path::LOG_DISAGREEMENT,
+        "log₁₀ distance from the most accurate",
+        [120, 120, 120],
+        |f| log10_abs(disagreement(f)),
+    ),
 ];
+
+/// A frame's distance from the most accurate method's string, if it has one.
+fn disagreement(f: &Frame) -> f64 {
+    f.lane.and_then(|l| l.disagreement).unwrap_or(f64::NAN)
+}
+
+/// The time series of one frame, one value per [`SERIES`] entry.
+type SeriesRow = (f64, i64, [f64; SERIES.len()]);
+
+/// What the logger keeps for one method's frames: where its entities go, its trail, and its
+/// time series not yet sent. A run of one method has one, with the plain entity paths.
+struct LaneLog {
+    /// Where the method stands among several side by side; `None` in a run of one method.
+    index: Option<usize>,
+    /// The method's name side by side.
+    name: &'static str,
+    /// The method's colour side by side (its finest shade on the study's charts).
+    colour: rerun::Color,
+    /// What its entity paths end with: "" alone, "/{method}" side by side.
+    suffix: String,
+    trail: VecDeque<[f32; 2]>,
+    series: Vec<SeriesRow>,
+}
+
+impl LaneLog {
+    /// The one lane of a run of one method.
+    fn alone() -> Self {
+        Self::new(None, "", [0, 0, 0])
+    }
+
+    /// The lane of the method at `index` among several side by side.
+    fn of(index: usize, plan: &RunPlan) -> Self {
+        Self::new(
+            Some(index),
+            plan.method.name(),
+            plan.method.descriptor().colours.1,
+        )
+    }
+
+    fn new(index: Option<usize>, name: &'static str, [r, g, b]: [u8; 3]) -> Self {
+        Self {
+            index,
+            name,
+            colour: rerun::Color::from_rgb(r, g, b),
+            suffix: index.map_or(String::new(), |_| format!("/{name}")),
+            trail: VecDeque::with_capacity(TRAIL_FRAMES),
+            series: Vec::with_capacity(BATCH_SERIES_CAPACITY),
+        }
+    }
+
+    /// `entity`'s path for this lane.
+    fn at(&self, entity: &str) -> String {
+        format!("{entity}{}", self.suffix)
+    }
+
+    /// Whether `frame` is of this lane.
+    fn owns(&self, frame: &Frame) -> bool {
+        frame.lane.map(|l| l.index) == self.index
+    }
+}
 
 /// A paced run sends each frame's shapes at once, but gathers the time series of up to this
 /// many frames (or [`SERIES_WAIT`]) into one chunk per series: each chunk carries its own
@@ -177,9 +257,8 @@ fn timelines(
 /// starts where the one before it ended (`--loop`), so one recording holds them all.
 pub struct RopeLogger {
     rec: RecordingStream,
-    trail: VecDeque<[f32; 2]>,
-    /// Time series not yet sent: `sim_time`, `step`, and a value per series, per frame.
-    series: Vec<(f64, i64, [f64; SERIES.len()])>,
+    /// One per method of the current run.
+    lanes: Vec<LaneLog>,
     series_sent: Instant,
     /// Where the current run's t = 0 and step 0 lie on the timelines.
     time_offset: f64,
@@ -264,8 +343,7 @@ impl RopeLogger {
         }
         Ok(Self {
             rec,
-            trail: VecDeque::with_capacity(TRAIL_FRAMES),
-            series: Vec::with_capacity(BATCH_SERIES_CAPACITY),
+            lanes: vec![LaneLog::alone()],
             series_sent: Instant::now(),
             time_offset: 0.0,
             step_offset: 0,
@@ -331,7 +409,7 @@ impl RopeLogger {
     }
 
     /// The `sim_time` and `step` columns of `frames`, placed after the runs before.
-    fn frame_times(&self, frames: &[Frame]) -> [rerun::TimeColumn; 2] {
+    fn frame_times(&self, frames: &[&Frame]) -> [rerun::TimeColumn; 2] {
         let (time_offset, step_offset) = (self.time_offset, self.step_offset);
         timelines(
             frames.iter().map(|f| time_offset + f.time),
@@ -343,19 +421,33 @@ impl RopeLogger {
     /// frame and entity, sent as columns (one chunk per entity for the whole batch, far
     /// cheaper than a log call per frame and entity).
     pub fn log_frames(&mut self, frames: &[Frame]) -> rerun::RecordingStreamResult<()> {
-        if frames.is_empty() {
-            return Ok(());
+        for lane in 0..self.lanes.len() {
+            let mine: Vec<&Frame> = frames.iter().filter(|f| self.lanes[lane].owns(f)).collect();
+            if mine.is_empty() {
+                continue;
+            }
+            self.log_rope(lane, &mine)?;
+            self.log_tip_and_trail(lane, &mine)?;
+            self.log_tension_profile(lane, &mine)?;
+            self.log_tolerance_passed(lane, &mine)?;
+            self.gather_series(lane, &mine);
         }
-        self.log_rope(frames)?;
-        self.log_tip_and_trail(frames)?;
-        self.log_tension_profile(frames)?;
-        self.log_tolerance_passed(frames)?;
-        self.gather_series(frames)
+        let gathered: usize = self.lanes.iter().map(|l| l.series.len()).sum();
+        if gathered >= SERIES_FRAMES * self.lanes.len() || self.series_sent.elapsed() >= SERIES_WAIT
+        {
+            self.send_series()?;
+        }
+        Ok(())
     }
 
     /// The frame at which the estimate passed the tolerance, if it is among `frames`: a
     /// marker on the error plot and a warning in the events.
-    fn log_tolerance_passed(&self, frames: &[Frame]) -> rerun::RecordingStreamResult<()> {
+    fn log_tolerance_passed(
+        &self,
+        lane: usize,
+        frames: &[&Frame],
+    ) -> rerun::RecordingStreamResult<()> {
+        let lane = &self.lanes[lane];
         for f in frames.iter().filter(|f| f.tolerance_exceeded) {
             let tip = f.error_estimate.map_or(f64::NAN, |e| e.tip);
             let eps = self.tolerance.unwrap_or(f64::NAN);
@@ -368,7 +460,7 @@ impl RopeLogger {
                 (path::LOG_TOLERANCE_PASSED, log10_abs(tip)),
             ] {
                 self.rec.send_columns(
-                    entity,
+                    lane.at(entity),
                     times.clone(),
                     rerun::Scalars::new([value]).columns_of_unit_batches()?,
                 )?;
@@ -389,7 +481,7 @@ impl RopeLogger {
     }
 
     /// The rope: one 2-point strip per segment, coloured by its tension.
-    fn log_rope(&self, frames: &[Frame]) -> rerun::RecordingStreamResult<()> {
+    fn log_rope(&self, lane: usize, frames: &[&Frame]) -> rerun::RecordingStreamResult<()> {
         let mut strips = Vec::new();
         let mut colours = Vec::new();
         let mut lengths = Vec::with_capacity(frames.len());
@@ -399,7 +491,7 @@ impl RopeLogger {
             colours.extend(f.tension.iter().map(|&t| tension_colour(t)));
         }
         self.rec.send_columns(
-            path::SEGMENTS,
+            self.lanes[lane].at(path::SEGMENTS),
             self.frame_times(frames),
             rerun::LineStrips2D::update_fields()
                 .with_strips(strips)
@@ -409,28 +501,35 @@ impl RopeLogger {
     }
 
     /// The tip, and its trail as it stood at each frame.
-    fn log_tip_and_trail(&mut self, frames: &[Frame]) -> rerun::RecordingStreamResult<()> {
+    fn log_tip_and_trail(
+        &mut self,
+        lane: usize,
+        frames: &[&Frame],
+    ) -> rerun::RecordingStreamResult<()> {
         let tips: Vec<[f32; 2]> = frames.iter().map(|f| xy(&f.tip())).collect();
+        let times = self.frame_times(frames);
+        let lane = &mut self.lanes[lane];
         self.rec.send_columns(
-            path::TIP,
-            self.frame_times(frames),
+            lane.at(path::TIP),
+            times.clone(),
             rerun::Points2D::update_fields()
                 .with_positions(tips.iter().copied())
                 .columns_of_unit_batches()?,
         )?;
+        let trail = &mut lane.trail;
         let trails: Vec<Vec<[f32; 2]>> = tips
             .iter()
             .map(|&tip| {
-                if self.trail.len() == TRAIL_FRAMES {
-                    self.trail.pop_front();
+                if trail.len() == TRAIL_FRAMES {
+                    trail.pop_front();
                 }
-                self.trail.push_back(tip);
-                self.trail.iter().copied().collect()
+                trail.push_back(tip);
+                trail.iter().copied().collect()
             })
             .collect();
         self.rec.send_columns(
-            path::TRAIL,
-            self.frame_times(frames),
+            lane.at(path::TRAIL),
+            times,
             rerun::LineStrips2D::update_fields()
                 .with_strips(trails)
                 .columns_of_unit_batches()?,
@@ -438,7 +537,11 @@ impl RopeLogger {
     }
 
     /// F(s) drawn upward: x = s, y = −F (the 2D view's y points down).
-    fn log_tension_profile(&self, frames: &[Frame]) -> rerun::RecordingStreamResult<()> {
+    fn log_tension_profile(
+        &self,
+        lane: usize,
+        frames: &[&Frame],
+    ) -> rerun::RecordingStreamResult<()> {
         let profiles: Vec<Vec<[f32; 2]>> = frames
             .iter()
             .map(|f| {
@@ -451,7 +554,7 @@ impl RopeLogger {
             })
             .collect();
         self.rec.send_columns(
-            path::PROFILE,
+            self.lanes[lane].at(path::PROFILE),
             self.frame_times(frames),
             rerun::LineStrips2D::update_fields()
                 .with_strips(profiles)
@@ -459,30 +562,39 @@ impl RopeLogger {
         )
     }
 
-    /// Adds the frames' time series to those not yet sent, and sends them when enough have
-    /// gathered (or waited long enough).
-    fn gather_series(&mut self, frames: &[Frame]) -> rerun::RecordingStreamResult<()> {
+    /// Adds the frames' time series to those of their lane not yet sent.
+    fn gather_series(&mut self, lane: usize, frames: &[&Frame]) {
         let (time_offset, step_offset) = (self.time_offset, self.step_offset);
-        self.series.extend(frames.iter().map(|f| {
+        self.lanes[lane].series.extend(frames.iter().map(|f| {
             (
                 time_offset + f.time,
                 (step_offset + f.step) as i64,
                 SERIES.map(|(_, _, _, value)| value(f)),
             )
         }));
-        if self.series.len() >= SERIES_FRAMES || self.series_sent.elapsed() >= SERIES_WAIT {
-            self.send_series()?;
+    }
+
+    /// Sends the time series gathered so far, one chunk per series and lane.
+    pub fn send_series(&mut self) -> rerun::RecordingStreamResult<()> {
+        self.series_sent = Instant::now();
+        for lane in &mut self.lanes {
+            send_lane_series(&self.rec, lane, self.tolerance)?;
         }
         Ok(())
     }
+}
 
-    /// Sends the time series gathered so far, one chunk per series.
-    pub fn send_series(&mut self) -> rerun::RecordingStreamResult<()> {
-        self.series_sent = Instant::now();
-        if self.series.is_empty() {
+/// Sends one lane's gathered time series, one chunk per series.
+fn send_lane_series(
+    rec: &RecordingStream,
+    lane: &mut LaneLog,
+    tolerance: Option<f64>,
+) -> rerun::RecordingStreamResult<()> {
+    {
+        if lane.series.is_empty() {
             return Ok(());
         }
-        let rows = &self.series;
+        let rows = &lane.series;
         for (i, (entity, ..)) in SERIES.iter().enumerate() {
             // A value a frame does not have (NaN) is not sent: a series a method does not
             // have is not sent at all.
@@ -490,25 +602,92 @@ impl RopeLogger {
             if kept().next().is_none() {
                 continue;
             }
-            self.rec.send_columns(
-                *entity,
+            rec.send_columns(
+                lane.at(entity),
                 timelines(kept().map(|r| r.0), kept().map(|r| r.1)),
                 rerun::Scalars::new(kept().map(|r| r.2[i])).columns_of_unit_batches()?,
             )?;
         }
-        if let Some(eps) = self.tolerance {
+        if let Some(eps) = tolerance {
             for (entity, value) in [
                 (path::TOLERANCE, eps),
                 (path::LOG_TOLERANCE, log10_abs(eps)),
             ] {
-                self.rec.send_columns(
-                    entity,
+                rec.send_columns(
+                    lane.at(entity),
                     timelines(rows.iter().map(|r| r.0), rows.iter().map(|r| r.1)),
                     rerun::Scalars::new(rows.iter().map(|_| value)).columns_of_unit_batches()?,
                 )?;
             }
         }
-        self.series.clear();
+        lane.series.clear();
+        Ok(())
+    }
+}
+
+impl RopeLogger {
+    /// What is running, where the run starts: the caption over the rope, and the parameters.
+    fn log_run_text(&self, headline: String, markdown: String) -> Result<(), RecordingError> {
+        let times = || timelines([self.time_offset], [self.step_offset as i64]);
+        self.rec.send_columns(
+            path::CAPTION,
+            times(),
+            rerun::Points2D::update_fields()
+                .with_labels([headline])
+                .columns_of_unit_batches()?,
+        )?;
+        self.rec.send_columns(
+            path::PARAMETERS,
+            times(),
+            rerun::TextDocument::update_fields()
+                .with_text(markdown)
+                .with_media_type(rerun::MediaType::markdown())
+                .columns_of_unit_batches()?,
+        )?;
+        Ok(())
+    }
+
+    /// How one method of several side by side is drawn: its rope as any (tension colours),
+    /// its tip, profile and time series in its own colour, named by it.
+    fn style_lane(&self, lane: &LaneLog) -> rerun::RecordingStreamResult<()> {
+        let (method, colour) = (lane.name, lane.colour);
+        self.rec.log_static(
+            lane.at(path::SEGMENTS),
+            &rerun::LineStrips2D::update_fields().with_radii([ROPE_RADIUS]),
+        )?;
+        self.rec.log_static(
+            lane.at(path::TIP),
+            &rerun::Points2D::update_fields()
+                .with_radii([0.018])
+                .with_colors([colour])
+                .with_labels([method])
+                .with_show_labels(true),
+        )?;
+        self.rec.log_static(
+            lane.at(path::TRAIL),
+            &rerun::LineStrips2D::update_fields()
+                .with_radii([0.002])
+                .with_colors([colour]),
+        )?;
+        self.rec.log_static(
+            lane.at(path::PROFILE),
+            &rerun::LineStrips2D::update_fields()
+                .with_radii([0.008])
+                .with_colors([colour]),
+        )?;
+        for (entity, name, ..) in SERIES {
+            let name = if entity.starts_with("energy/") {
+                format!("{method} {name}")
+            } else {
+                method.to_owned()
+            };
+            self.rec.log_static(
+                lane.at(entity),
+                &rerun::SeriesLines::new()
+                    .with_names([name])
+                    .with_colors([colour]),
+            )?;
+        }
         Ok(())
     }
 }
@@ -526,21 +705,74 @@ impl FrameSink for RopeLogger {
     fn begin_run(&mut self, plan: &RunPlan) -> Result<(), RecordingError> {
         // What was gathered belongs to the run before, and to its tolerance.
         self.send_series()?;
-        self.trail.clear();
+        self.lanes = vec![LaneLog::alone()];
         self.tolerance = plan.tolerance;
-        self.rec.send_columns(
-            path::CAPTION,
-            timelines([self.time_offset], [self.step_offset as i64]),
-            rerun::Points2D::update_fields()
-                .with_labels([plan.headline()])
-                .columns_of_unit_batches()?,
+        self.log_run_text(plan.headline(), plan.markdown())
+    }
+
+    fn begin_lanes(&mut self, plans: &[RunPlan]) -> Result<(), RecordingError> {
+        self.send_series()?;
+        self.tolerance = None; // (--tolerance chooses one method: never side by side)
+        self.lanes = plans
+            .iter()
+            .enumerate()
+            .map(|(i, p)| LaneLog::of(i, p))
+            .collect();
+        for lane in &self.lanes {
+            self.style_lane(lane)?;
+        }
+        let names: Vec<&str> = self.lanes.iter().map(|l| l.name).collect();
+        self.rec.log_static(
+            path::LEGEND,
+            &rerun::Points2D::new((0..plans.len()).map(|i| [-0.95f32, -0.3 + 0.1 * i as f32]))
+                .with_radii([0.025])
+                .with_colors(self.lanes.iter().map(|l| l.colour))
+                .with_labels(names.iter().map(|n| format!("{n} (tip)")))
+                .with_show_labels(true),
         )?;
+        let headline = match plans.first() {
+            Some(p) => format!(
+                "{} side by side, {}, N = {}",
+                names.join(", "),
+                p.scene,
+                p.segments
+            ),
+            None => String::new(),
+        };
+        let markdown: Vec<String> = plans.iter().map(RunPlan::markdown).collect();
+        self.log_run_text(headline, markdown.join("\n\n---\n\n"))
+    }
+
+    /// The rope and its profile leave the view where the method stopped, and the events say
+    /// when and why.
+    fn lane_ended(&mut self, lane: usize, why: &Diverged) -> Result<(), RecordingError> {
+        self.send_series()?;
+        let Some(lane) = self.lanes.iter().find(|l| l.index == Some(lane)) else {
+            return Ok(());
+        };
+        let method = lane.name;
+        let times = || {
+            timelines(
+                [self.time_offset + why.time],
+                [(self.step_offset + why.step) as i64],
+            )
+        };
+        for entity in [path::SEGMENTS, path::TIP, path::TRAIL, path::PROFILE] {
+            self.rec.send_columns(
+                lane.at(entity),
+                times(),
+                rerun::Clear::new(false).columns_of_unit_batches()?,
+            )?;
+        }
         self.rec.send_columns(
-            path::PARAMETERS,
-            timelines([self.time_offset], [self.step_offset as i64]),
-            rerun::TextDocument::update_fields()
-                .with_text(plan.markdown())
-                .with_media_type(rerun::MediaType::markdown())
+            path::EVENTS,
+            times(),
+            rerun::TextLog::update_fields()
+                .with_text(format!(
+                    "{method} diverged at t = {:.3} ({})",
+                    why.time, why.reason
+                ))
+                .with_level(rerun::TextLogLevel::WARN)
                 .columns_of_unit_batches()?,
         )?;
         Ok(())

@@ -3,6 +3,7 @@
 
 use super::cost::{self, Cost, Limits};
 use super::estimate::Shadow;
+use super::simulate::step_on_frame_grid;
 use crate::error::ConfigError;
 use crate::methods::{Method, MethodKind};
 use crate::model::Scene;
@@ -39,6 +40,9 @@ pub struct RunConfig {
     /// The tip error the run is meant to stay within (`--tolerance`), watched through the
     /// live estimate. Default: none.
     pub tolerance: Option<f64>,
+    /// Bring the time step down onto the frames' grid ([`step_on_frame_grid`]), so that the
+    /// run shares every frame time with runs of other methods beside it. Default: false.
+    pub shared_frames: bool,
 }
 
 impl Default for RunConfig {
@@ -55,6 +59,7 @@ impl Default for RunConfig {
             limits: Limits::default(),
             error_estimate: true,
             tolerance: None,
+            shared_frames: false,
         }
     }
 }
@@ -87,6 +92,11 @@ impl RunConfig {
         let dt = self
             .dt
             .unwrap_or_else(|| method.default_dt(segments.max(1)));
+        let dt = if self.shared_frames && dt.is_finite() && dt > 0.0 && self.log_rate > 0.0 {
+            step_on_frame_grid(dt, self.log_rate)
+        } else {
+            dt
+        };
         if self.duration.is_nan() || self.duration < 0.0 {
             return Err(ConfigError::Duration(self.duration));
         }

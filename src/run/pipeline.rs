@@ -7,17 +7,17 @@ use super::simulate::{self, Frame, Options, Outcome, Watch};
 use super::sink::FrameSink;
 use super::summary::{Summary, TipSamples};
 use crate::error::ConfigError;
-use crossbeam_channel::{Receiver, RecvTimeoutError, Sender};
+use crossbeam_channel::{Receiver, RecvTimeoutError};
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 /// Frames in flight between the threads: enough to ride out a slow flush, small enough that
 /// an interrupted run drains at once.
-const CHANNEL_FRAMES: usize = 64;
+pub(super) const CHANNEL_FRAMES: usize = 64;
 
 /// Frames handed to the sink together when the run is not paced to the wall clock.
-const BATCH_FRAMES: usize = 16;
+pub(super) const BATCH_FRAMES: usize = 16;
 
 /// How long a partly filled batch waits for more frames before it is handed over.
 const BATCH_WAIT: Duration = Duration::from_millis(50);
@@ -58,11 +58,12 @@ pub fn run<S: FrameSink>(
                 method: method.as_mut(),
                 watch,
             },
-            tx,
+            |frame| tx.send(frame).is_ok(),
             stop,
             progress,
             started,
         );
+        drop(tx); // ends the sink thread's loop once it has drained the channel
         let delivered = sink_thread
             .join()
             .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
@@ -84,7 +85,7 @@ pub fn run<S: FrameSink>(
 /// Why the sink could not take the run, in words: the step that failed and the sink's
 /// own reason.
 #[derive(Debug, thiserror::Error)]
-enum Delivery<E: std::error::Error> {
+pub(super) enum Delivery<E: std::error::Error> {
     #[error("logging the run's parameters: {0}")]
     Begin(E),
     #[error("writing frames to the recording: {0}")]
@@ -126,18 +127,19 @@ fn deliver<S: FrameSink>(
 }
 
 /// What the simulation thread steps: the method, and its shadow if it has one.
-struct Simulation<'a> {
-    method: &'a mut dyn crate::methods::Method,
-    watch: Option<Watch<'a>>,
+pub(super) struct Simulation<'a> {
+    pub method: &'a mut dyn crate::methods::Method,
+    pub watch: Option<Watch<'a>>,
 }
 
 /// The simulation thread's work: runs the method, keeps the tip's latest samples, paces to
-/// the wall clock if asked, and sends each frame. A sink that has gone ends the run. Returns
-/// the outcome, the tip samples, and the time spent computing (not waiting).
-fn simulate_and_send(
+/// the wall clock if asked, and sends each frame (`send` says false when nobody takes them
+/// any more, which ends the run). Returns the outcome, the tip samples, and the time spent
+/// computing (not waiting).
+pub(super) fn simulate_and_send(
     plan: &RunPlan,
     simulation: Simulation<'_>,
-    tx: Sender<Frame>,
+    mut send: impl FnMut(Frame) -> bool,
     stop: &AtomicBool,
     progress: &(dyn Fn(&Frame) + Sync),
     started: Instant,
@@ -156,7 +158,7 @@ fn simulate_and_send(
         if let Some(speed) = plan.realtime {
             pace(started, frame.time / speed, stop);
         }
-        let sent = tx.send(frame).is_ok();
+        let sent = send(frame);
         waiting += wait_started.elapsed();
         if sent {
             ControlFlow::Continue(())
@@ -164,7 +166,6 @@ fn simulate_and_send(
             ControlFlow::Break(())
         }
     });
-    drop(tx); // ends the sink thread's loop once it has drained the channel
     (outcome, samples, started.elapsed().saturating_sub(waiting))
 }
 

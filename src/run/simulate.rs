@@ -68,6 +68,29 @@ pub struct Frame {
     pub error_estimate: Option<ErrorEstimate>,
     /// Set on the one frame at which the tip estimate first passed the tolerance.
     pub tolerance_exceeded: bool,
+    /// In a run of several methods side by side: which one this frame is of, and how far its
+    /// string is from the most accurate one's. `None` in a run of one method.
+    pub lane: Option<Lane>,
+}
+
+/// A frame's place in a run of several methods side by side.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lane {
+    /// Where the method stands in the run's list (the plans of `FrameSink::begin_lanes`).
+    pub index: usize,
+    pub method: crate::methods::MethodKind,
+    /// The largest distance, at equal arc length, between this string and that of the most
+    /// accurate method still running (`MethodKind::BY_ACCURACY`); `None` for that one.
+    pub disagreement: Option<f64>,
+}
+
+/// The largest time step at most `dt` that puts frames `1 / log_rate` apart on whole
+/// numbers of [`STRIDE`] steps: methods at such steps share every frame time exactly (and
+/// each its shadow's), so that their strings can be compared frame by frame.
+pub fn step_on_frame_grid(dt: f64, log_rate: f64) -> f64 {
+    let frame = 1.0 / log_rate;
+    let strides = (frame / (dt * STRIDE as f64) - 1e-9).ceil().max(1.0);
+    frame / (strides * STRIDE as f64)
 }
 
 impl Frame {
@@ -157,6 +180,7 @@ pub fn frame(
         velocity_residual: method.velocity_residual(),
         error_estimate: None,
         tolerance_exceeded: false,
+        lane: None,
     }
 }
 

@@ -5,6 +5,7 @@
 
 use super::config::RunPlan;
 use super::simulate::Frame;
+use crate::error::Diverged;
 
 /// Receives the frames of runs, in order. For each run the pipeline calls [`begin_run`]
 /// once, [`frames`] with batches in time order, [`flush`] once after the last frame, and
@@ -29,6 +30,22 @@ pub trait FrameSink: Send {
 
     /// The run reached simulated `time` after `steps` steps (the next one starts there).
     fn end_run(&mut self, time: f64, steps: u64);
+
+    /// Several methods start side by side (`--method A,B,…`), one plan each, on the same
+    /// frame times; their frames carry a [`Lane`](super::simulate::Lane). Called instead of
+    /// [`begin_run`](FrameSink::begin_run); by default, it begins the first method's run.
+    fn begin_lanes(&mut self, plans: &[RunPlan]) -> Result<(), Self::Error> {
+        match plans.first() {
+            Some(plan) => self.begin_run(plan),
+            None => Ok(()),
+        }
+    }
+
+    /// The method at `lane` in the plans of [`begin_lanes`](FrameSink::begin_lanes) stopped
+    /// early, for `why` (the others go on). By default, nothing is done with it.
+    fn lane_ended(&mut self, _lane: usize, _why: &Diverged) -> Result<(), Self::Error> {
+        Ok(())
+    }
 }
 
 /// Takes every frame and keeps none: a run measured, not recorded.

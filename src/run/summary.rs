@@ -157,6 +157,15 @@ pub struct Summary {
     pub free_fall: Option<FreeFall>,
     /// Why the recording could not be completed (e.g. the viewer went away), if it could not.
     pub recording_error: Option<String>,
+    /// In a run of several methods side by side: the largest distance, at equal arc length,
+    /// between this method's string and that of the most accurate method running, over the
+    /// run (`None` for the most accurate itself, and in a run of one method).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub disagreement: Option<f64>,
+    /// In a run of several methods side by side, each one's summary, in the order named
+    /// (the fields above are the first one's); absent in a run of one method.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub methods: Vec<Summary>,
 }
 
 impl Summary {
@@ -227,11 +236,18 @@ impl Summary {
             period_theory: plan.scene.mode_period(),
             free_fall,
             recording_error,
+            disagreement: None,
+            methods: Vec::new(),
         }
     }
 
-    /// A few lines for a person at the terminal.
+    /// A few lines for a person at the terminal (side by side, each method's, then how far
+    /// each strayed from the most accurate).
     pub fn human(&self) -> String {
+        if !self.methods.is_empty() {
+            let each: Vec<String> = self.methods.iter().map(Summary::human).collect();
+            return format!("{}\n{}", each.join("\n"), side_by_side(&self.methods));
+        }
         let status = match (&self.status, &self.diverged) {
             (Status::Diverged, Some(d)) => format!("DIVERGED: {d}"),
             (Status::Interrupted, _) => "interrupted".to_owned(),
@@ -371,6 +387,33 @@ impl Summary {
         }
         text
     }
+}
+
+/// One line for methods run side by side: how far each strayed from the most accurate one's
+/// string, and which stopped early.
+pub fn side_by_side(summaries: &[Summary]) -> String {
+    let best = summaries
+        .iter()
+        .min_by_key(|s| s.method.accuracy_rank())
+        .map_or("", |s| s.method.name());
+    let each: Vec<String> = summaries
+        .iter()
+        .filter(|s| s.method.name() != best)
+        .map(|s| {
+            let stopped = match &s.diverged {
+                Some(d) => format!(", diverged at t = {:.3}", d.time),
+                None => String::new(),
+            };
+            match s.disagreement {
+                Some(d) => format!("{} {d:.1e}{stopped}", s.method),
+                None => format!("{} none measured{stopped}", s.method),
+            }
+        })
+        .collect();
+    format!(
+        "rope: side by side, the largest distance from {best}'s string at equal arc length: {}",
+        each.join("; ")
+    )
 }
 
 /// The difference from the Bessel period, in %, past which the summary says the amplitude
