@@ -1,17 +1,22 @@
 #!/usr/bin/env python3
 """`rope run --web` in a real browser.
 
-Starts `rope run --web … --no-browser --duration inf --realtime`, loads the page in headless
+Starts `rope run --web … --no-browser` with RUN_ARGS (by default two methods side by side,
+`--method seed,chain --duration inf --realtime`: the seed scheme blows up after some tens of
+seconds and the chain goes on), loads the page in headless
 Chromium (Debian's chromium-headless-shell, driven by Playwright; nothing downloads a
 browser) with WebGL forced, and checks that the viewer says it streams from the run's gRPC
 endpoint, that no page error and no "Rerun has crashed" appears, and that the canvas is not
 blank; saves a screenshot; stops the run with SIGTERM.
 
-    scripts/web-check.py [--screenshot PATH] [--seconds S] [--soak S [--soak-csv PATH]]
+    scripts/web-check.py [--screenshot PATH] [--seconds S] [--run-args "ARGS"]
+                         [--soak S [--soak-csv PATH] [--sample-every S]]
 
-With --soak S the page stays open S seconds more, and every 30 s the script records whether
-the page still answers, the browser's resident memory (all its processes) and the page's JS
-heap, and rope's resident memory: the browser soak of docs/measurements.md.
+With --soak S the page stays open S seconds more, and every --sample-every seconds (30) the
+script records whether the page still answers, whether its picture changed since the last
+sample (a live swing keeps changing it: still streaming), the browser's resident memory (all
+its processes) and the page's JS heap, and rope's resident memory: the browser soaks of
+docs/measurements.md.
 
 Where the browser or Playwright is missing it says so and exits 0 as SKIPPED (CI installs
 both: `apt-get install --no-install-recommends chromium-headless-shell`, `pip install
@@ -20,12 +25,14 @@ that data arrived, not that the newest frame is on screen.
 """
 
 import argparse
+import hashlib
 import pathlib
 import shutil
 import signal
 import socket
 import subprocess
 import sys
+import threading
 import time
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
@@ -68,26 +75,38 @@ def browser_pids():
     return pids
 
 
-def soak(page, rope_pid: int, seconds: float, csv: pathlib.Path) -> list:
-    """Keeps the page open, sampling every 30 s; returns the failures seen."""
-    rows = ["seconds,page_alive,browser_mb,js_heap_mb,rope_mb"]
+def soak(page, rope_pid: int, seconds: float, every: float, csv: pathlib.Path) -> list:
+    """Keeps the page open, sampling every `every` s; returns the failures seen."""
+    rows = ["seconds,page_alive,picture_changed,browser_mb,js_heap_mb,rope_mb"]
     failures = []
     started = time.time()
+    last_picture = None
+    sample = 0
     while time.time() - started < seconds:
-        page.wait_for_timeout(30_000)
+        sample += 1  # on a grid of `every` seconds, whatever a sample itself takes
+        page.wait_for_timeout(max(0.0, started + sample * every - time.time()) * 1000)
+        try:
+            picture = hashlib.sha256(page.screenshot()).hexdigest()
+        except Exception:  # a crashed renderer raises here too; said below
+            picture = None
+        changed = int(picture is not None and picture != last_picture)
+        last_picture = picture
         try:
             heap = page.evaluate("performance.memory ? performance.memory.usedJSHeapSize : 0")
             alive = True
         except Exception as err:  # a crashed renderer raises here
             heap, alive = 0, False
             failures.append(f"the page stopped answering after {time.time() - started:.0f} s: {err}")
-        rows.append(f"{time.time() - started:.0f},{int(alive)},{resident_mb(browser_pids()):.1f},"
-                    f"{heap / 1e6:.1f},{resident_mb([rope_pid]):.1f}")
+        rows.append(f"{time.time() - started:.0f},{int(alive)},{changed},"
+                    f"{resident_mb(browser_pids()):.1f},{heap / 1e6:.1f},{resident_mb([rope_pid]):.1f}")
         print(f"web-check: soak {rows[-1]}", flush=True)
+        csv.parent.mkdir(parents=True, exist_ok=True)
+        csv.write_text("\n".join(rows) + "\n")  # kept as it goes: a crash leaves the samples
         if not alive:
             break
-    csv.parent.mkdir(parents=True, exist_ok=True)
-    csv.write_text("\n".join(rows) + "\n")
+    tail = [int(row.split(",")[2]) for row in rows[-3:] if row[0].isdigit()]
+    if len(tail) == 3 and not any(tail):
+        failures.append("the page's picture did not change over its last 3 samples: no longer streaming")
     return failures
 
 
@@ -97,6 +116,9 @@ def main() -> int:
     parser.add_argument("--seconds", type=float, default=90.0, help="how long to wait for data")
     parser.add_argument("--soak", type=float, default=0.0, help="seconds to keep the page open")
     parser.add_argument("--soak-csv", default=str(ROOT / "target" / "web-soak.csv"))
+    parser.add_argument("--sample-every", type=float, default=30.0, help="seconds between soak samples")
+    parser.add_argument("--run-args", default="--method seed,chain --duration inf --realtime",
+                        help="the arguments of `rope run` besides --web, --serve-grpc and --no-browser")
     args = parser.parse_args()
 
     shell = shutil.which("chromium-headless-shell")
@@ -113,7 +135,7 @@ def main() -> int:
     web, grpc = free_port(), free_port()
     run = subprocess.Popen(
         [str(rope), "run", "--web", f"127.0.0.1:{web}", "--serve-grpc", f"127.0.0.1:{grpc}",
-         "--no-browser", "--duration", "inf", "--realtime"],
+         "--no-browser", *args.run_args.split()],
         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     page_url = None
     for line in run.stderr:
@@ -123,6 +145,9 @@ def main() -> int:
     if page_url is None:
         print("web-check: FAILED: rope printed no page address")
         return 1
+    # Keep reading what rope says (each run's summary in a loop): a full pipe would stall it.
+    said: list = []
+    threading.Thread(target=lambda: said.extend(run.stderr), daemon=True).start()
     page_url += "&renderer=webgl"
     failures: list = []
     with sync_playwright() as p:
@@ -152,7 +177,7 @@ def main() -> int:
             page.wait_for_timeout(500)
         page.wait_for_timeout(5000)
         if args.soak > 0:
-            failures += soak(page, run.pid, args.soak, pathlib.Path(args.soak_csv))
+            failures += soak(page, run.pid, args.soak, args.sample_every, pathlib.Path(args.soak_csv))
         shot = page.screenshot(path=args.screenshot)
         crashed = any(el.is_visible() for el in page.get_by_text("Rerun has crashed").all())
         browser.close()

@@ -724,7 +724,7 @@ impl FrameSink for RopeLogger {
         let names: Vec<&str> = self.lanes.iter().map(|l| l.name).collect();
         self.rec.log_static(
             path::LEGEND,
-            &rerun::Points2D::new((0..plans.len()).map(|i| [-0.95f32, -0.3 + 0.1 * i as f32]))
+            &rerun::Points2D::new((0..plans.len()).map(|i| [-0.85f32, -0.55 + 0.1 * i as f32]))
                 .with_radii([0.025])
                 .with_colors(self.lanes.iter().map(|l| l.colour))
                 .with_labels(names.iter().map(|n| format!("{n} (tip)")))
