@@ -469,14 +469,10 @@ pub struct RunArgs {
     #[arg(long, value_enum, value_delimiter = ',')]
     pub method: Vec<MethodKind>,
 
-    /// Frames logged per time unit.
-    #[arg(
-        long,
-        default_value_t = 60.0,
-        allow_negative_numbers = true,
-        allow_hyphen_values = true
-    )]
-    pub log_rate: f64,
+    /// Frames logged per time unit [default: 60; 30 for several methods side by side, which
+    /// send a frame per method].
+    #[arg(long, allow_negative_numbers = true, allow_hyphen_values = true)]
+    pub log_rate: Option<f64>,
 
     /// Pace the simulation to the wall clock, SPEED time units per second (default 1), for
     /// watching live. Without it the run goes as fast as it can.
@@ -569,6 +565,13 @@ impl RunArgs {
             .unwrap_or_else(|| MethodKind::default_for(self.duration))
     }
 
+    /// Frames per time unit: as asked, or 60, or 30 side by side (a frame per method: the
+    /// browser's viewer keeps up with three methods at 30, not at 60).
+    pub fn log_rate(&self) -> f64 {
+        self.log_rate
+            .unwrap_or(if self.compares() { 30.0 } else { 60.0 })
+    }
+
     /// Whether several methods are to run side by side.
     pub fn compares(&self) -> bool {
         self.method.len() > 1
@@ -603,7 +606,7 @@ impl RunArgs {
             segments: self.segments,
             dt: self.dt,
             duration: self.duration,
-            log_rate: self.log_rate,
+            log_rate: self.log_rate(),
             realtime: self.realtime,
             allow_unstable: self.allow_unstable,
             limits: self.limits.limits(),
@@ -665,7 +668,7 @@ impl RunArgs {
         let memory = self.limits.limits().memory(); // read once: the rule asks many times
         // The chosen run carries the live estimate (--tolerance needs it): its shadow counts.
         let cost_of = |method, segments, dt| {
-            Cost::of_estimated_run(method, segments, dt, duration, self.log_rate, true)
+            Cost::of_estimated_run(method, segments, dt, duration, self.log_rate(), true)
         };
         let fits = |method, segments, dt| {
             let cost = cost_of(method, segments, dt);

@@ -295,7 +295,6 @@ fn run_passes(
                 rope::run::pipeline::run(plan, logger, stop, &on_frame)?
             } else {
                 let lanes = rope::run::lanes::run(&planned.lanes(), logger, stop, &on_frame)?;
-                progress.finish();
                 side_by_side(lanes)?
             };
             progress.finish();

@@ -23,9 +23,10 @@ fn two_methods_share_one_recording_with_a_rope_and_a_plot_line_each() {
     let said = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{said}");
     let rec = Recording::read(&rrd);
-    // Every rope on the same frame times: t = 0, 1/60, …, 1.
+    // Every rope on the same frame times: t = 0, 1/30, …, 1 (side by side, 30 frames per
+    // time unit unless --log-rate says otherwise).
     let times = rec.sim_times("rope/segments/chain");
-    assert_eq!(times.len(), 61);
+    assert_eq!(times.len(), 31);
     for method in ["seed", "rattle"] {
         let theirs = rec.sim_times(&format!("rope/segments/{method}"));
         assert_eq!(theirs.len(), times.len(), "{method}");
@@ -41,7 +42,7 @@ fn two_methods_share_one_recording_with_a_rope_and_a_plot_line_each() {
         assert_eq!(
             rec.scalars(&format!("log10/energy_deviation/{method}"))
                 .len(),
-            61
+            31
         );
     }
     // The most accurate (chain, by the registry) is what the others are measured from. Rattle

@@ -167,6 +167,20 @@ const SERIES: [Series; 16] = [
     ),
 ];
 
+/// The time series each of several methods side by side sends: what the plots show. A frame
+/// per method already multiplies what a viewer takes; the rest (kinetic and potential energy,
+/// the raw deviation and estimates, the tip's speed) stay with a run of one method, and so do
+/// the tip's trails.
+const SIDE_BY_SIDE: [&str; 7] = [
+    path::TOTAL,
+    path::SUPPORT_TENSION,
+    path::LOG_DEVIATION,
+    path::LOG_TIP_ESTIMATE,
+    path::DISAGREEMENT,
+    path::LOG_DISAGREEMENT,
+    path::CONSTRAINT_RESIDUAL,
+];
+
 /// A frame's distance from the most accurate method's string, if it has one.
 fn disagreement(f: &Frame) -> f64 {
     f.lane.and_then(|l| l.disagreement).unwrap_or(f64::NAN)
@@ -219,6 +233,11 @@ impl LaneLog {
     /// `entity`'s path for this lane.
     fn at(&self, entity: &str) -> String {
         format!("{entity}{}", self.suffix)
+    }
+
+    /// Whether this lane sends the time series of `entity`.
+    fn sends(&self, entity: &str) -> bool {
+        self.index.is_none() || SIDE_BY_SIDE.contains(&entity)
     }
 
     /// Whether `frame` is of this lane.
@@ -516,6 +535,9 @@ impl RopeLogger {
                 .with_positions(tips.iter().copied())
                 .columns_of_unit_batches()?,
         )?;
+        if lane.index.is_some() {
+            return Ok(()); // side by side, the tips' trails would only tangle
+        }
         let trail = &mut lane.trail;
         let trails: Vec<Vec<[f32; 2]>> = tips
             .iter()
@@ -596,6 +618,9 @@ fn send_lane_series(
         }
         let rows = &lane.series;
         for (i, (entity, ..)) in SERIES.iter().enumerate() {
+            if !lane.sends(entity) {
+                continue;
+            }
             // A value a frame does not have (NaN) is not sent: a series a method does not
             // have is not sent at all.
             let kept = || rows.iter().filter(move |r| !r.2[i].is_nan());
@@ -664,18 +689,12 @@ impl RopeLogger {
                 .with_show_labels(true),
         )?;
         self.rec.log_static(
-            lane.at(path::TRAIL),
-            &rerun::LineStrips2D::update_fields()
-                .with_radii([0.002])
-                .with_colors([colour]),
-        )?;
-        self.rec.log_static(
             lane.at(path::PROFILE),
             &rerun::LineStrips2D::update_fields()
                 .with_radii([0.008])
                 .with_colors([colour]),
         )?;
-        for (entity, name, ..) in SERIES {
+        for (entity, name, ..) in SERIES.into_iter().filter(|(e, ..)| lane.sends(e)) {
             let name = if entity.starts_with("energy/") {
                 format!("{method} {name}")
             } else {
@@ -757,7 +776,7 @@ impl FrameSink for RopeLogger {
                 [(self.step_offset + why.step) as i64],
             )
         };
-        for entity in [path::SEGMENTS, path::TIP, path::TRAIL, path::PROFILE] {
+        for entity in [path::SEGMENTS, path::TIP, path::PROFILE] {
             self.rec.send_columns(
                 lane.at(entity),
                 times(),
