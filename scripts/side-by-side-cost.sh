@@ -4,18 +4,20 @@
 # simulation thread's time computing: steps, shadow, frames), their sum (what one thread
 # stepping them all would take), the wall time, and how many times faster than realtime the
 # run went (T / wall: the room a --realtime run has).
-#   scripts/side-by-side-cost.sh [METHODS=seed,chain,rattle] [T=60] [N=100]
+#   scripts/side-by-side-cost.sh [METHODS=seed,chain,rattle] [T=60] [N=100] [MORE FLAGS…]
+# (e.g. `scripts/side-by-side-cost.sh seed,chain,rattle 60 100 --no-error-estimate`)
 set -euo pipefail
 methods=${1:-seed,chain,rattle}
 duration=${2:-60}
 segments=${3:-100}
+more=("${@:4}")
 cd "$(dirname "$0")/.."
 cargo build --release --locked --quiet
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
 start=$(date +%s.%N)
 target/release/rope run --method "$methods" --duration "$duration" --segments "$segments" \
-    --save "$scratch/x.rrd" --summary "$scratch/s.json" 2>/dev/null || true
+    --save "$scratch/x.rrd" --summary "$scratch/s.json" "${more[@]}" 2>/dev/null || true
 end=$(date +%s.%N)
 python3 - "$scratch/s.json" "$start" "$end" "$duration" <<'PY'
 import json, sys

@@ -87,14 +87,17 @@ def soak(page, rope_pid: int, seconds: float, every: float, csv: pathlib.Path) -
         page.wait_for_timeout(max(0.0, started + sample * every - time.time()) * 1000)
         try:
             # The time panel's strip (its time readout follows the live stream): a small
-            # picture, cheap to take from a renderer that is busy drawing.
-            strip = page.screenshot(clip={"x": 0, "y": 640, "width": 640, "height": 40})
+            # picture, cheap to take from a renderer that is busy drawing. A renderer that
+            # cannot give one within 20 s has fallen behind: the sample says so, and goes on.
+            strip = page.screenshot(clip={"x": 0, "y": 640, "width": 640, "height": 40},
+                                    timeout=20_000)
             picture = hashlib.sha256(strip).hexdigest()
-        except Exception:  # a crashed renderer raises here too; said below
+        except Exception:  # a crashed or stalled renderer raises here; said below
             picture = None
         changed = int(picture is not None and picture != last_picture)
         last_picture = picture
         try:
+            page.wait_for_function("true", timeout=20_000)  # the page's JS still runs
             heap = page.evaluate("performance.memory ? performance.memory.usedJSHeapSize : 0")
             alive = True
         except Exception as err:  # a crashed renderer raises here

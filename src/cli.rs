@@ -7,6 +7,7 @@ use crate::methods::tolerance::{self, Choice};
 use crate::model::Scene;
 use crate::recording::destinations::OutputArgs;
 use crate::run::cost::{self, Cost, Limits};
+use crate::run::pilot::{self, Pilot};
 use crate::run::{RunConfig, RunPlan};
 use crate::study::Spec;
 use std::path::PathBuf;
@@ -528,6 +529,8 @@ pub struct Planned {
     /// The runs of the other methods of a comparison (`--method A,B,…`), side by side with
     /// `plan` on the same frame times; empty for a run of one method.
     pub others: Vec<RunPlan>,
+    /// What the pilot runs of `--tolerance` measured, if it flew them.
+    pub pilots: Vec<Pilot>,
 }
 
 impl Planned {
@@ -613,17 +616,17 @@ impl RunArgs {
             error_estimate: !self.no_error_estimate,
             tolerance: self.tolerance,
         };
-        let (config, choice) = match self.tolerance {
-            None => (asked, None),
+        let (config, choice, pilots) = match self.tolerance {
+            None => (asked, None, Vec::new()),
             Some(eps) => {
-                let choice = self.choose(eps, &scene)?;
+                let (choice, pilots) = self.choose(eps, &scene)?;
                 let chosen = RunConfig {
                     method: choice.method,
                     segments: choice.segments,
                     dt: Some(choice.dt),
                     ..asked
                 };
-                (chosen, Some(choice))
+                (chosen, Some(choice), pilots)
             }
         };
         let lane = |method: MethodKind| {
@@ -651,12 +654,15 @@ impl RunArgs {
             plan,
             choice,
             others,
+            pilots,
         })
     }
 
     /// What `--tolerance EPS` chooses for `scene`: the cheapest choice whose run fits in
-    /// [`tolerance::MAX_SECONDS`] of CPU and the memory it may use.
-    fn choose(&self, eps: f64, scene: &Scene) -> Result<Choice, ConfigError> {
+    /// [`tolerance::MAX_SECONDS`] of CPU and the memory it may use, from the scene's own error
+    /// models measured by pilot runs ([`pilot::fly`]), or from the committed models where
+    /// those already prove a run cheaper than the pilots (or the pilots found none).
+    fn choose(&self, eps: f64, scene: &Scene) -> Result<(Choice, Vec<Pilot>), ConfigError> {
         scene.validate()?;
         if !(eps.is_finite() && eps > 0.0) {
             return Err(ConfigError::Tolerance(eps));
@@ -674,8 +680,37 @@ impl RunArgs {
             let cost = cost_of(method, segments, dt);
             cost.bytes <= memory && cost.seconds <= tolerance::MAX_SECONDS
         };
-        if let Some(choice) = tolerance::choose(eps, duration, scene, fits) {
-            return Ok(choice);
+        let committed = tolerance::choose(eps, duration, scene, fits);
+        // The pilots cost what runs at their levels cost; a choice the committed models
+        // already prove cheaper than that is taken as it is.
+        let pilots_cost: f64 = tolerance::startable(scene)
+            .flat_map(|m| pilot::LEVELS.map(move |n| (m, n)))
+            .map(|(m, n)| {
+                Cost::of_estimated_run(
+                    m,
+                    n,
+                    m.default_dt(n),
+                    duration.min(pilot::WINDOW),
+                    60.0,
+                    true,
+                )
+                .seconds
+            })
+            .sum();
+        if let Some(choice) = committed
+            && cost_of(choice.method, choice.segments, choice.dt).seconds <= pilots_cost
+        {
+            return Ok((choice, Vec::new()));
+        }
+        let pilots: Vec<Pilot> = tolerance::startable(scene)
+            .map(|m| pilot::fly(m, scene, duration))
+            .collect();
+        let own_model = |m: MethodKind| pilots.iter().find(|p| p.method == m).and_then(|p| p.model);
+        let fewest = pilot::LEVELS[0];
+        if let Some(choice) =
+            tolerance::choose_with(eps, duration, scene, own_model, fewest, fits).or(committed)
+        {
+            return Ok((choice, pilots));
         }
         let best = tolerance::tightest(duration, scene, fits)
             .ok_or(ConfigError::ToleranceNoMethod(eps))?;

@@ -108,15 +108,32 @@ fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
 /// warns of a step past a method's limit and of a run the method is known not to last.
 fn announce(args: &RunArgs, plans: &[Planned]) {
     let several = plans.len() > 1;
-    for Planned { plan, choice, .. } in plans {
+    for Planned {
+        plan,
+        choice,
+        pilots,
+        ..
+    } in plans
+    {
         let Some(choice) = choice else { continue };
         let scene = if several {
             format!(" ({})", plan.scene)
         } else {
             String::new()
         };
+        if !pilots.is_empty() {
+            eprintln!("{}", pilot_lines(pilots, plan.duration));
+        }
+        let basis = if pilots
+            .iter()
+            .any(|p| p.method == choice.method && p.model.is_some())
+        {
+            "the scene's own error model, from the pilots"
+        } else {
+            "the committed error model, fitted to t = 3 over six scenes by `rope study --estimate-check`"
+        };
         eprintln!(
-            "rope: tolerance {:e}{scene}: chose the {} method, N = {}, k = {:e}; predicted tip error at most {:.1e}, predicted cost {:.2e} CPU s with its frames and the estimate's shadow (error model fitted to t = 3 over six scenes by `rope study --estimate-check`; the live estimate will say if it holds)",
+            "rope: tolerance {:e}{scene}: chose the {} method, N = {}, k = {:e}; predicted tip error at most {:.1e}, predicted cost {:.2e} CPU s with its frames and the estimate's shadow ({basis}; the live estimate will say if it holds)",
             args.tolerance.unwrap_or_default(),
             choice.method,
             choice.segments,
@@ -181,6 +198,36 @@ fn announce(args: &RunArgs, plans: &[Planned]) {
             args.method()
         );
     }
+}
+
+/// What the pilots of `--tolerance` measured, a line per method.
+fn pilot_lines(pilots: &[rope::run::pilot::Pilot], duration: f64) -> String {
+    let seconds: f64 = pilots.iter().map(|p| p.seconds).sum();
+    let levels: Vec<String> = rope::run::pilot::LEVELS
+        .iter()
+        .map(|n| n.to_string())
+        .collect();
+    let mut text = format!(
+        "rope: tolerance pilots: each method at N = {} to t = {}, {seconds:.2} s of CPU; the largest live tip estimate at each N:",
+        levels.join(", "),
+        duration.min(rope::run::pilot::WINDOW)
+    );
+    for p in pilots {
+        let measured: Vec<String> = p.measured.iter().map(|(_, e)| format!("{e:.1e}")).collect();
+        let what = match (&p.diverged, &p.model) {
+            (Some(d), _) => format!("ruled out, a pilot diverged: {d}"),
+            (None, Some(m)) => format!(
+                "{} → error ≈ {:.3} h^{:.2} (×{:.1} safety)",
+                measured.join(", "),
+                m.constant,
+                m.order,
+                m.safety
+            ),
+            (None, None) => format!("{} → no model fitted", measured.join(", ")),
+        };
+        text += &format!("\n  {}: {what}", p.method);
+    }
+    text
 }
 
 /// Warns of a run longer than its method is known to last (the blow-up map's earliest at
@@ -308,11 +355,17 @@ fn run_passes(
                 lanes => lanes.iter().all(|l| l.status != Status::Ok),
             };
             let ended = failed || summary.recording_error.is_some();
-            let deviation = summary.energy.max_rel_deviation;
-            if !summary.method.descriptor().keeps_energy
-                && strayed.is_none_or(|(_, worst)| deviation > worst)
-            {
-                strayed = Some((summary.method, deviation));
+            let each = match summary.methods.as_slice() {
+                [] => std::slice::from_ref(&summary),
+                lanes => lanes,
+            };
+            for run in each {
+                let deviation = run.energy.max_rel_deviation;
+                if !run.method.descriptor().keeps_energy
+                    && strayed.is_none_or(|(_, worst)| deviation > worst)
+                {
+                    strayed = Some((run.method, deviation));
+                }
             }
             last = Some(summary);
             if ended || stop.load(Ordering::SeqCst) {

@@ -3,6 +3,7 @@
 //! method's error model (with its measured safety factor) and cost in its
 //! [`Descriptor`](super::Descriptor).
 
+use super::error_model::ErrorModel;
 use super::registry::MethodKind;
 use crate::model::Scene;
 
@@ -36,10 +37,26 @@ pub fn choose(
     scene: &Scene,
     fits: impl Fn(MethodKind, usize, f64) -> bool,
 ) -> Option<Choice> {
+    let committed = |m: MethodKind| Some(m.descriptor().error_model);
+    choose_with(tolerance, duration, scene, committed, MIN_SEGMENTS, fits)
+}
+
+/// As [`choose`], with each method's error model given by `model_of` (the scene's own, from
+/// pilot runs; a method it gives none for is left out), and at least `fewest` segments (a
+/// model measured from N up is not trusted below it).
+pub fn choose_with(
+    tolerance: f64,
+    duration: f64,
+    scene: &Scene,
+    model_of: impl Fn(MethodKind) -> Option<ErrorModel>,
+    fewest: usize,
+    fits: impl Fn(MethodKind, usize, f64) -> bool,
+) -> Option<Choice> {
     startable(scene)
-        .map(|method| {
-            let model = method.descriptor().error_model;
-            choice(method, model.segments_for(tolerance), duration)
+        .filter_map(|method| {
+            let model = model_of(method)?;
+            let segments = model.segments_for(tolerance).max(fewest);
+            Some(choice(method, &model, segments, duration))
         })
         .filter(|c| fits(c.method, c.segments, c.dt))
         .min_by(|a, b| a.predicted_seconds.total_cmp(&b.predicted_seconds))
@@ -67,13 +84,18 @@ pub fn tightest(
                 let mid = good + (bad - good) / 2;
                 if fits_at(mid) { good = mid } else { bad = mid }
             }
-            Some(choice(method, good, duration))
+            Some(choice(
+                method,
+                &method.descriptor().error_model,
+                good,
+                duration,
+            ))
         })
         .min_by(|a, b| a.predicted_error.total_cmp(&b.predicted_error))
 }
 
 /// The methods that can start from `scene`.
-fn startable(scene: &Scene) -> impl Iterator<Item = MethodKind> + '_ {
+pub fn startable(scene: &Scene) -> impl Iterator<Item = MethodKind> + '_ {
     MethodKind::ALL
         .into_iter()
         .filter(move |&method| can_start(method, scene))
@@ -89,8 +111,9 @@ fn can_start(method: MethodKind, scene: &Scene) -> bool {
         .is_ok()
 }
 
-/// `method` at `segments` (at least [`MIN_SEGMENTS`]) and its default step, to `duration`.
-fn choice(method: MethodKind, segments: usize, duration: f64) -> Choice {
+/// `method` at `segments` (at least [`MIN_SEGMENTS`]) and its default step, to `duration`,
+/// its error predicted by `model`.
+fn choice(method: MethodKind, model: &ErrorModel, segments: usize, duration: f64) -> Choice {
     let d = method.descriptor();
     let segments = segments.max(MIN_SEGMENTS);
     let dt = d.default_dt(segments);
@@ -99,7 +122,7 @@ fn choice(method: MethodKind, segments: usize, duration: f64) -> Choice {
         method,
         segments,
         dt,
-        predicted_error: d.error_model.bound(segments),
+        predicted_error: model.bound(segments),
         predicted_seconds: d.ns_per_segment_step * 1e-9 * segments as f64 * steps,
     }
 }

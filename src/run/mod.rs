@@ -9,6 +9,7 @@ pub mod config;
 pub mod cost;
 pub mod estimate;
 pub mod lanes;
+pub mod pilot;
 pub mod pipeline;
 pub mod progress;
 pub mod simulate;
