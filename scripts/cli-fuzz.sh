@@ -59,12 +59,15 @@ for ((r = 1; r <= runs; r++)); do
         ((RANDOM % 2)) && add --dt "${steps[@]}"
     fi
     ((RANDOM % 2)) && add --segments "${counts[@]}"
-    ((RANDOM % 3 == 0)) && add --angle "${numbers[@]}" "0,30" "30,60,90"
-    ((RANDOM % 3 == 0)) && add --method seed chain rattle ""
+    ((RANDOM % 3 == 0)) && add --method seed chain rattle midpoint "" "seed,chain" "chain,chain"
+    # Each scene with its own flags, mostly (a flag of the other scene is refused by name).
     if ((RANDOM % 4 == 0)); then
         args+=(--scene mode)
         add --mode-number 0 1 2 4 5 "1,2"
         add --amplitude "${numbers[@]}"
+        ((RANDOM % 8 == 0)) && add --angle "${numbers[@]}"
+    else
+        ((RANDOM % 3 == 0)) && add --angle "${numbers[@]}" "0,30" "30,60,90"
     fi
     ((RANDOM % 4 == 0)) && add --log-rate "${numbers[@]}" 60 1000
     ((RANDOM % 5 == 0)) && add --tolerance "${numbers[@]}" 1e-2 3e-3 1e-12
