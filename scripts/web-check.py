@@ -184,8 +184,12 @@ def main() -> int:
         page.wait_for_timeout(5000)
         if args.soak > 0:
             failures += soak(page, run.pid, args.soak, args.sample_every, pathlib.Path(args.soak_csv))
-        shot = page.screenshot(path=args.screenshot)
-        crashed = any(el.is_visible() for el in page.get_by_text("Rerun has crashed").all())
+        try:
+            shot = page.screenshot(path=args.screenshot, timeout=60_000)
+            crashed = any(el.is_visible() for el in page.get_by_text("Rerun has crashed").all())
+        except Exception as err:  # a page that stopped answering cannot be drawn either
+            shot, crashed = b"", False
+            failures.append(f"no screenshot: {str(err).splitlines()[0]}")
         browser.close()
     run.send_signal(signal.SIGTERM)
     try:

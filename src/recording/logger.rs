@@ -202,24 +202,40 @@ struct LaneLog {
     suffix: String,
     trail: VecDeque<[f32; 2]>,
     series: Vec<SeriesRow>,
+    /// Every how many frames a row of time series is kept: 1 alone; side by side, enough to
+    /// keep [`SIDE_BY_SIDE_SERIES_RATE`] rows per time unit (the plots redraw their whole
+    /// history every frame, and a browser on a small machine could not keep up with more).
+    series_stride: u64,
+    /// Frames of this lane seen so far.
+    frames_seen: u64,
 }
+
+/// Rows of time series per time unit each of several methods side by side sends at most.
+const SIDE_BY_SIDE_SERIES_RATE: f64 = 10.0;
 
 impl LaneLog {
     /// The one lane of a run of one method.
     fn alone() -> Self {
-        Self::new(None, "", [0, 0, 0])
+        Self::new(None, "", [0, 0, 0], 1)
     }
 
     /// The lane of the method at `index` among several side by side.
     fn of(index: usize, plan: &RunPlan) -> Self {
+        let stride = (plan.log_rate / SIDE_BY_SIDE_SERIES_RATE).ceil().max(1.0) as u64;
         Self::new(
             Some(index),
             plan.method.name(),
             plan.method.descriptor().colours.1,
+            stride,
         )
     }
 
-    fn new(index: Option<usize>, name: &'static str, [r, g, b]: [u8; 3]) -> Self {
+    fn new(
+        index: Option<usize>,
+        name: &'static str,
+        [r, g, b]: [u8; 3],
+        series_stride: u64,
+    ) -> Self {
         Self {
             index,
             name,
@@ -227,6 +243,8 @@ impl LaneLog {
             suffix: index.map_or(String::new(), |_| format!("/{name}")),
             trail: VecDeque::with_capacity(TRAIL_FRAMES),
             series: Vec::with_capacity(BATCH_SERIES_CAPACITY),
+            series_stride,
+            frames_seen: 0,
         }
     }
 
@@ -587,13 +605,18 @@ impl RopeLogger {
     /// Adds the frames' time series to those of their lane not yet sent.
     fn gather_series(&mut self, lane: usize, frames: &[&Frame]) {
         let (time_offset, step_offset) = (self.time_offset, self.step_offset);
-        self.lanes[lane].series.extend(frames.iter().map(|f| {
-            (
-                time_offset + f.time,
-                (step_offset + f.step) as i64,
-                SERIES.map(|(_, _, _, value)| value(f)),
-            )
-        }));
+        let lane = &mut self.lanes[lane];
+        for f in frames {
+            // Side by side a frame's marks (the tolerance passed) are not series: none is lost.
+            if lane.frames_seen.is_multiple_of(lane.series_stride) {
+                lane.series.push((
+                    time_offset + f.time,
+                    (step_offset + f.step) as i64,
+                    SERIES.map(|(_, _, _, value)| value(f)),
+                ));
+            }
+            lane.frames_seen += 1;
+        }
     }
 
     /// Sends the time series gathered so far, one chunk per series and lane.

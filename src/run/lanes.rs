@@ -16,6 +16,9 @@ use crossbeam_channel::Receiver;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
+/// How much simulated time of instants a paced run hands over at once.
+const PACED_BATCH_TIME: f64 = 0.1;
+
 /// What a method's thread sends: its frames, then how it ended.
 enum Message {
     Frame(Frame),
@@ -125,11 +128,13 @@ fn deliver<S: FrameSink>(
     if let Err(err) = sink.begin_lanes(plans) {
         return Err((largest, Delivery::Begin(err)));
     }
-    let batch_frames = if plans.iter().any(|p| p.realtime.is_some()) {
-        plans.len()
-    } else {
-        BATCH_FRAMES * plans.len()
+    // Paced, about a tenth of a time unit of instants at a time: each send is a chunk per
+    // entity and method, and a browser's viewer keeps up with fewer, larger chunks.
+    let instants = match plans.first() {
+        Some(p) if p.realtime.is_some() => (p.log_rate * PACED_BATCH_TIME).ceil().max(1.0) as usize,
+        _ => BATCH_FRAMES,
     };
+    let batch_frames = instants * plans.len();
     let mut live = vec![true; plans.len()];
     let mut batch: Vec<Frame> = Vec::with_capacity(batch_frames + plans.len());
     let mut instant: Vec<(usize, Frame)> = Vec::with_capacity(plans.len());
