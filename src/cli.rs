@@ -684,18 +684,7 @@ impl RunArgs {
         // The pilots cost what runs at their levels cost; a choice the committed models
         // already prove cheaper than that is taken as it is.
         let pilots_cost: f64 = tolerance::startable(scene)
-            .flat_map(|m| pilot::LEVELS.map(move |n| (m, n)))
-            .map(|(m, n)| {
-                Cost::of_estimated_run(
-                    m,
-                    n,
-                    m.default_dt(n),
-                    duration.min(pilot::WINDOW),
-                    60.0,
-                    true,
-                )
-                .seconds
-            })
+            .map(|m| pilot::predicted_seconds(m, duration))
             .sum();
         if let Some(choice) = committed
             && cost_of(choice.method, choice.segments, choice.dt).seconds <= pilots_cost

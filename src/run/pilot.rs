@@ -2,6 +2,7 @@
 //! its live error estimate (the shadow at N/2), so that the rule models the scene at hand
 //! rather than the worst of the six scenes the committed error models were fitted to.
 
+use super::cost::Cost;
 use super::estimate::Shadow;
 use super::simulate::{self, Options, Watch};
 use crate::error::Diverged;
@@ -39,6 +40,17 @@ pub struct Pilot {
     pub diverged: Option<Diverged>,
     /// CPU seconds the pilots took (one thread).
     pub seconds: f64,
+}
+
+/// The CPU seconds `method`'s pilots are predicted to take for a run of `duration`.
+pub fn predicted_seconds(method: MethodKind, duration: f64) -> f64 {
+    LEVELS
+        .iter()
+        .map(|&n| {
+            let dt = method.default_dt(n);
+            Cost::of_estimated_run(method, n, dt, duration.min(WINDOW), RATE, true).seconds
+        })
+        .sum()
 }
 
 /// Runs `method`'s pilots in `scene` to `duration` (at most [`WINDOW`]) at each of
