@@ -62,22 +62,33 @@ def resident_mb(pids) -> float:
     return total / 1e6
 
 
-def browser_pids():
-    """The pids of every chromium-headless-shell process."""
+def browser_pids(kind: str = ""):
+    """The pids of every chromium-headless-shell process, or of those of one `--type=`."""
     pids = []
     for entry in pathlib.Path("/proc").iterdir():
         if entry.name.isdigit():
             try:
-                if "chromium-headless-shell" in (entry / "cmdline").read_text():
+                cmdline = (entry / "cmdline").read_text()
+                if "chromium-headless-shell" in cmdline and (not kind or f"--type={kind}" in cmdline):
                     pids.append(int(entry.name))
             except (FileNotFoundError, ProcessLookupError, PermissionError):
                 pass
     return pids
 
 
+# How many frames the page draws in one second: a viewer whose every frame costs more as its
+# history grows draws fewer, and falls behind the stream once it draws too few.
+FRAMES_IN_A_SECOND = """new Promise(done => {
+    let frames = 0;
+    const start = performance.now();
+    const tick = now => { frames += 1; if (now - start < 1000) requestAnimationFrame(tick); else done(frames); };
+    requestAnimationFrame(tick);
+})"""
+
+
 def soak(page, rope_pid: int, seconds: float, every: float, csv: pathlib.Path) -> list:
     """Keeps the page open, sampling every `every` s; returns the failures seen."""
-    rows = ["seconds,page_alive,picture_changed,browser_mb,js_heap_mb,rope_mb"]
+    rows = ["seconds,page_alive,picture_changed,browser_mb,js_heap_mb,rope_mb,page_fps,wasm_mb,renderer_mb,gpu_mb"]
     failures = []
     started = time.time()
     last_picture = None
@@ -99,12 +110,16 @@ def soak(page, rope_pid: int, seconds: float, every: float, csv: pathlib.Path) -
         try:
             page.wait_for_function("true", timeout=20_000)  # the page's JS still runs
             heap = page.evaluate("performance.memory ? performance.memory.usedJSHeapSize : 0")
+            fps = page.evaluate(FRAMES_IN_A_SECOND)
+            # The viewer's own memory: its WebAssembly memory, which grows and never shrinks.
+            wasm = page.evaluate("wasm_bindgen().then(w => w.memory.buffer.byteLength)")
             alive = True
         except Exception as err:  # a crashed renderer raises here
-            heap, alive = 0, False
+            heap, fps, wasm, alive = 0, 0, 0, False
             failures.append(f"the page stopped answering after {time.time() - started:.0f} s: {err}")
         rows.append(f"{time.time() - started:.0f},{int(alive)},{changed},"
-                    f"{resident_mb(browser_pids()):.1f},{heap / 1e6:.1f},{resident_mb([rope_pid]):.1f}")
+                    f"{resident_mb(browser_pids()):.1f},{heap / 1e6:.1f},{resident_mb([rope_pid]):.1f},{fps},{wasm / 1e6:.1f},"
+                    f"{resident_mb(browser_pids('renderer')):.1f},{resident_mb(browser_pids('gpu-process')):.1f}")
         print(f"web-check: soak {rows[-1]}", flush=True)
         csv.parent.mkdir(parents=True, exist_ok=True)
         csv.write_text("\n".join(rows) + "\n")  # kept as it goes: a crash leaves the samples

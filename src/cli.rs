@@ -3,7 +3,7 @@
 
 use crate::error::ConfigError;
 use crate::methods::MethodKind;
-use crate::methods::tolerance::{self, Choice};
+use crate::methods::tolerance::Choice;
 use crate::model::Scene;
 use crate::recording::destinations::OutputArgs;
 use crate::run::cost::{self, Cost, Limits};
@@ -185,6 +185,15 @@ pub struct StudyArgs {
     /// --segments, --dts and --duration are not used).
     #[arg(long, conflicts_with_all = ["long_run", "blow_up"])]
     pub estimate_check: bool,
+
+    /// Instead of the grid: check what `--tolerance` chooses against the truth. For the six
+    /// scenes of --estimate-check and EPS = 1e-2, 1e-3, 1e-4 (where the reference, the chain
+    /// extrapolated from N = 400, 800, 1600, is fine enough), the chosen run's largest tip
+    /// error over the frames to t = 3, and its CPU (pilots included) beside the cheapest run
+    /// of a grid (N = 16 … 400) that holds EPS; writes tolerance_check.md. `quick`: the
+    /// release from 30° and mode 1 at 1e-2 only (what CI runs).
+    #[arg(long, value_enum, value_name = "SIZE", num_args = 0..=1, default_missing_value = "full", conflicts_with_all = ["long_run", "blow_up", "estimate_check"])]
+    pub tolerance_check: Option<CheckSize>,
 
     /// Run only shard I of N of the grid (the cells whose place in the grid's fixed order is
     /// I modulo N) and write a partial study.csv and its manifest shard.json into --out, for
@@ -470,8 +479,9 @@ pub struct RunArgs {
     #[arg(long, value_enum, value_delimiter = ',')]
     pub method: Vec<MethodKind>,
 
-    /// Frames logged per time unit [default: 60; 30 for several methods side by side, which
-    /// send a frame per method].
+    /// Frames logged per time unit [default: 60; for several methods side by side, which
+    /// send a frame per method, 30, or 10 to a served viewer (--web, --serve-grpc), whose
+    /// browser keeps every frame].
     #[arg(long, allow_negative_numbers = true, allow_hyphen_values = true)]
     pub log_rate: Option<f64>,
 
@@ -499,6 +509,19 @@ pub struct RunArgs {
 
     #[command(flatten)]
     pub output: OutputArgs,
+}
+
+/// Frames per time unit of several methods side by side to a served viewer: a browser keeps
+/// them all, and at this rate three methods stay below its memory limit for over an hour.
+pub const SERVED_SIDE_BY_SIDE_RATE: f64 = 10.0;
+
+/// How much of `--tolerance-check` to run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum CheckSize {
+    /// Six scenes, three tolerances.
+    Full,
+    /// Two scenes at 1e-2.
+    Quick,
 }
 
 /// How many times `--loop` goes through the list of scenes.
@@ -568,11 +591,17 @@ impl RunArgs {
             .unwrap_or_else(|| MethodKind::default_for(self.duration))
     }
 
-    /// Frames per time unit: as asked, or 60, or 30 side by side (a frame per method: the
-    /// browser's viewer keeps up with three methods at 30, not at 60).
+    /// Frames per time unit: as asked, or 60; side by side (a frame per method), 30, or 10
+    /// to a served viewer (`--web`, `--serve-grpc`). A browser keeps every frame it is sent
+    /// and stopped when its count passed 2.3 GiB: three methods at 30 lasted 19 minutes,
+    /// at 10 they last the hour (docs/measurements.md, "Browser soak").
     pub fn log_rate(&self) -> f64 {
-        self.log_rate
-            .unwrap_or(if self.compares() { 30.0 } else { 60.0 })
+        let served = self.output.web.is_some() || self.output.serve_grpc.is_some();
+        self.log_rate.unwrap_or(match (self.compares(), served) {
+            (false, _) => 60.0,
+            (true, false) => 30.0,
+            (true, true) => SERVED_SIDE_BY_SIDE_RATE,
+        })
     }
 
     /// Whether several methods are to run side by side.
@@ -658,68 +687,16 @@ impl RunArgs {
         })
     }
 
-    /// What `--tolerance EPS` chooses for `scene`: the cheapest choice whose run fits in
-    /// [`tolerance::MAX_SECONDS`] of CPU and the memory it may use, from the scene's own error
-    /// models measured by pilot runs ([`pilot::fly`]), or from the committed models where
-    /// those already prove a run cheaper than the pilots (or the pilots found none).
+    /// `--tolerance EPS` for `scene`: the run layer's choice ([`pilot::choose`]) for this
+    /// run's duration, log rate and memory limit.
     fn choose(&self, eps: f64, scene: &Scene) -> Result<(Choice, Vec<Pilot>), ConfigError> {
-        scene.validate()?;
-        if !(eps.is_finite() && eps > 0.0) {
-            return Err(ConfigError::Tolerance(eps));
-        }
-        if self.duration.is_infinite() {
-            return Err(ConfigError::ToleranceEndless(eps));
-        }
-        let duration = self.duration.max(0.0);
-        let memory = self.limits.limits().memory(); // read once: the rule asks many times
-        // The chosen run carries the live estimate (--tolerance needs it): its shadow counts.
-        let cost_of = |method, segments, dt| {
-            Cost::of_estimated_run(method, segments, dt, duration, self.log_rate(), true)
-        };
-        let fits = |method, segments, dt| {
-            let cost = cost_of(method, segments, dt);
-            cost.bytes <= memory && cost.seconds <= tolerance::MAX_SECONDS
-        };
-        let committed = tolerance::choose(eps, duration, scene, fits);
-        // The pilots cost what runs at their levels cost; a choice the committed models
-        // already prove cheaper than that is taken as it is.
-        let pilots_cost: f64 = tolerance::startable(scene)
-            .map(|m| pilot::predicted_seconds(m, duration))
-            .sum();
-        if let Some(choice) = committed
-            && cost_of(choice.method, choice.segments, choice.dt).seconds <= pilots_cost
-        {
-            return Ok((choice, Vec::new()));
-        }
-        let pilots: Vec<Pilot> = tolerance::startable(scene)
-            .map(|m| pilot::fly(m, scene, duration))
-            .collect();
-        let own_model = |m: MethodKind| pilots.iter().find(|p| p.method == m).and_then(|p| p.model);
-        let fewest = pilot::LEVELS[0];
-        if let Some(choice) =
-            tolerance::choose_with(eps, duration, scene, own_model, fewest, fits).or(committed)
-        {
-            return Ok((choice, pilots));
-        }
-        let best = tolerance::tightest(duration, scene, fits)
-            .ok_or(ConfigError::ToleranceNoMethod(eps))?;
-        let cost = cost_of(best.method, best.segments, best.dt);
-        Err(ConfigError::ToleranceUnreachable {
-            tolerance: eps,
-            limit: format!(
-                "{} of CPU and {} of memory",
-                cost::seconds_text(tolerance::MAX_SECONDS),
-                cost::bytes_text(memory)
-            ),
-            tightest: best.predicted_error,
-            method: best.method.name(),
-            segments: best.segments,
-            cost: format!(
-                "{} of CPU, {}",
-                cost::seconds_text(cost.seconds),
-                cost::bytes_text(cost.bytes)
-            ),
-        })
+        pilot::choose(
+            eps,
+            scene,
+            self.duration,
+            self.log_rate(),
+            self.limits.limits().memory(),
+        )
     }
 }
 

@@ -3,7 +3,9 @@
 
 use anyhow::Context as _;
 use clap::Parser as _;
-use rope::cli::{Cli, Command, Planned, RunArgs, StudyArgs, check_writable_file, writable_dir};
+use rope::cli::{
+    CheckSize, Cli, Command, Planned, RunArgs, StudyArgs, check_writable_file, writable_dir,
+};
 use rope::methods::MethodKind;
 use rope::recording::destinations::Output;
 use rope::recording::error::OutputError;
@@ -478,6 +480,9 @@ fn study(args: &StudyArgs) -> anyhow::Result<ExitCode> {
     if args.estimate_check {
         return estimate_check(args);
     }
+    if let Some(size) = args.tolerance_check {
+        return tolerance_check(args, size);
+    }
     if let Some(dirs) = &args.merge {
         return merge(args, dirs);
     }
@@ -668,6 +673,39 @@ fn estimate_check(args: &StudyArgs) -> anyhow::Result<ExitCode> {
     println!("{markdown}");
     eprintln!(
         "rope study: wrote estimate_check.md, estimate_check.csv and estimate_check.png to {}",
+        args.out.display()
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `rope study --tolerance-check`: what `--tolerance` chooses, against the truth and the
+/// cheapest run of a grid.
+fn tolerance_check(args: &StudyArgs, size: CheckSize) -> anyhow::Result<ExitCode> {
+    use rope::study::tolerance_check::CheckSpec;
+    if let Err(err) = writable_dir("out", &args.out) {
+        return Ok(bad_input(&err));
+    }
+    let spec = match size {
+        CheckSize::Full => CheckSpec::default(),
+        CheckSize::Quick => CheckSpec::quick(),
+    };
+    let methods = MethodKind::ALL.len();
+    let runs = spec.scenes.len() * (1 + methods * spec.grid.len() + spec.tolerances.len());
+    eprintln!(
+        "rope study: {} scenes, each a reference at N = {} (with N/2 and 2N), a grid of up to {} runs and a choice per EPS in {:?}, to t = {}",
+        spec.scenes.len(),
+        spec.reference_segments,
+        methods * spec.grid.len(),
+        spec.tolerances,
+        spec.duration
+    );
+    let counter = Counter::new(runs as u64, "rope study", "references, runs and choices");
+    let markdown =
+        rope::study::execute_tolerance_check(&spec, &args.out, &command_line(), || counter.inc())?;
+    counter.finish();
+    println!("{markdown}");
+    eprintln!(
+        "rope study: wrote tolerance_check.md and tolerance_check.svg/.png to {}",
         args.out.display()
     );
     Ok(ExitCode::SUCCESS)

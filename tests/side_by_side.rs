@@ -25,18 +25,16 @@ fn two_methods_share_one_recording_with_a_rope_and_a_plot_line_each() {
     let rec = Recording::read(&rrd);
     // Every rope on the same frame times: t = 0, 1/30, …, 1 (side by side, 30 frames per
     // time unit unless --log-rate says otherwise).
-    let times = rec.sim_times("rope/segments/chain");
-    assert_eq!(times.len(), 31);
-    for method in ["seed", "rattle"] {
-        let theirs = rec.sim_times(&format!("rope/segments/{method}"));
-        assert_eq!(theirs.len(), times.len(), "{method}");
-        for (a, b) in theirs.iter().zip(&times) {
-            assert!(
-                (a - b).abs() < 1e-9,
-                "{method}: a frame at {a}, chain's at {b}"
-            );
-        }
+    // The methods' ropes, tips and profiles share their entities, an instant a row: every
+    // row has a tip per method, named by it.
+    let rows = rec.point_labels_by_row("rope/tips");
+    assert_eq!(rows.len(), 31);
+    for (i, (t, names)) in rows.iter().enumerate() {
+        assert!((t - i as f64 / 30.0).abs() < 1e-9, "a row at {t}");
+        assert_eq!(names, &["seed", "chain", "rattle"], "at {t}");
     }
+    assert_eq!(rec.sim_times("rope/segments").len(), 31);
+    assert_eq!(rec.sim_times("tension/profiles").len(), 31);
     // One energy line per method, 10 points per time unit side by side (t = 0, 0.1, …, 1).
     for method in ["seed", "chain", "rattle"] {
         assert_eq!(
@@ -75,6 +73,50 @@ fn two_methods_share_one_recording_with_a_rope_and_a_plot_line_each() {
         said.contains("largest distance from chain's string"),
         "{said}"
     );
+    every_rope_is_drawn_whole_in_shades(&rec, &s);
+}
+
+/// Side by side a rope is drawn in shades of tension, a strip per run of one shade: the
+/// strips of each method's rope must still join end to end from the support through every
+/// node to the tip, a colour each, and be fewer than the segments.
+fn every_rope_is_drawn_whole_in_shades(rec: &Recording, s: &serde_json::Value) {
+    let segments = s["segments"].as_u64().unwrap() as usize;
+    let strips = rerun::LineStrips2D::descriptor_strips().component;
+    let colors = rerun::LineStrips2D::descriptor_colors().component;
+    let mut rows = 0;
+    for chunk in rec.chunks["rope/segments"]
+        .iter()
+        .filter(|c| !c.is_static())
+    {
+        for (row, colours) in chunk
+            .iter_component::<rerun::components::LineStrip2D>(strips)
+            .zip(chunk.iter_component::<rerun::components::Color>(colors))
+        {
+            rows += 1;
+            assert_eq!(row.len(), colours.len(), "a colour per strip");
+            // Split the row into ropes: a rope starts at the support.
+            let mut ropes: Vec<Vec<&rerun::components::LineStrip2D>> = Vec::new();
+            for strip in row.iter() {
+                if strip.0[0].0 == [0.0, 0.0] {
+                    ropes.push(Vec::new());
+                }
+                ropes
+                    .last_mut()
+                    .expect("a rope starts at the support")
+                    .push(strip);
+            }
+            assert_eq!(ropes.len(), 3, "a rope per method");
+            for rope in ropes {
+                assert!(rope.len() < segments, "{} strips", rope.len());
+                let drawn: usize = rope.iter().map(|strip| strip.0.len() - 1).sum();
+                assert_eq!(drawn, segments, "every segment drawn once");
+                for pair in rope.windows(2) {
+                    assert_eq!(pair[0].0.last(), pair[1].0.first(), "strips join");
+                }
+            }
+        }
+    }
+    assert_eq!(rows, 31);
 }
 
 #[test]
@@ -110,21 +152,28 @@ fn a_method_that_diverges_stops_alone_and_the_other_finishes() {
             < 1e-9
     );
     let rec = Recording::read(&rrd);
-    // The seed's rope is cleared where it diverged, after its last trusted frame.
-    let cleared = rec.cleared_at("rope/segments/seed");
-    assert_eq!(cleared.len(), 1);
-    assert!(
-        (cleared[0] - diverged_at).abs() < 1e-9,
-        "cleared at {cleared:?}"
-    );
-    let seed_frames: Vec<f64> = rec
-        .sim_times("rope/segments/seed")
-        .into_iter()
-        .filter(|t| (t - cleared[0]).abs() > 1e-9)
-        .collect();
-    let seed_last = seed_frames.last().copied().unwrap();
+    // The seed's tip (and its rope and profile) leave the instants after its last trusted
+    // frame; the chain's go on to the end.
+    let rows = rec.point_labels_by_row("rope/tips");
+    let seed_last = rows
+        .iter()
+        .filter(|(_, names)| names.iter().any(|n| n == "seed"))
+        .map(|(t, _)| *t)
+        .fold(f64::NEG_INFINITY, f64::max);
     assert!(seed_last < diverged_at, "a seed frame at {seed_last}");
-    assert!((rec.sim_times("rope/segments/chain").last().unwrap() - 3.0).abs() < 1e-9);
+    assert!(
+        seed_last > diverged_at - 0.1,
+        "the seed's last frame at {seed_last}"
+    );
+    for (t, names) in &rows {
+        let expected: &[&str] = if *t <= seed_last {
+            &["seed", "chain"]
+        } else {
+            &["chain"]
+        };
+        assert_eq!(names, expected, "at {t}");
+    }
+    assert!((rows.last().unwrap().0 - 3.0).abs() < 1e-9);
     let events = rec.log_texts("events");
     assert!(
         events.iter().any(|e| e.starts_with("seed diverged at t =")),
@@ -156,4 +205,34 @@ fn bad_method_lists_are_refused_naming_the_flag() {
         assert_eq!(out.status.code(), Some(2), "{list}: {said}");
         assert!(said.contains(named), "{list} should name {named}: {said}");
     }
+}
+
+#[test]
+fn a_browser_side_by_side_is_sent_fewer_frames_than_a_file() {
+    use clap::Parser as _;
+    use rope::cli::{Cli, Command, SERVED_SIDE_BY_SIDE_RATE};
+    let rate = |extra: &[&str]| {
+        let mut args = vec!["rope", "run"];
+        args.extend_from_slice(extra);
+        match Cli::try_parse_from(&args).unwrap().command {
+            Command::Run(run) => run.log_rate(),
+            Command::Study(_) => unreachable!(),
+        }
+    };
+    // A browser keeps every frame: side by side it is sent fewer; a file, a native viewer
+    // and a single method keep their rates, and --log-rate always wins.
+    assert_eq!(
+        rate(&["--method", "seed,chain", "--web"]),
+        SERVED_SIDE_BY_SIDE_RATE
+    );
+    assert_eq!(
+        rate(&["--method", "seed,chain", "--serve-grpc", "127.0.0.1:9876"]),
+        SERVED_SIDE_BY_SIDE_RATE
+    );
+    assert_eq!(rate(&["--method", "seed,chain", "--save", "x.rrd"]), 30.0);
+    assert_eq!(rate(&["--method", "chain", "--web"]), 60.0);
+    assert_eq!(
+        rate(&["--method", "seed,chain", "--web", "--log-rate", "25"]),
+        25.0
+    );
 }

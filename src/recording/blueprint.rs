@@ -1,7 +1,7 @@
 //! The viewer's layout: the rope and its tension profile on the left, the time series on
 //! the right. One small function per view.
 
-use super::logger::{SIM_TIME, path};
+use super::entities::{SIM_TIME, path};
 use crate::run::RunPlan;
 use crate::run::simulate::REFERENCE_STEP;
 use rerun::blueprint::components::PanelState;

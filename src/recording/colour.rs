@@ -11,3 +11,67 @@ pub fn tension_colour(tension: f64) -> rerun::Color {
     let [r, g, b] = tension_rgb(tension);
     rerun::Color::from_rgb(r, g, b)
 }
+
+/// The step of tension a rope side by side is coloured in: 26 shades from red to yellow, a
+/// step of 10 in the green channel, which the eye hardly tells from the full map's 255.
+pub const SHADE: f64 = 0.05;
+
+/// The rope as few strips as its colours allow: consecutive segments whose tensions round to
+/// the same multiple of `shade` share one strip (and one colour). A rope of N segments is N
+/// two-point strips in the full map; in shades, its tension (smooth along the string) makes
+/// a strip of several segments each, about half the points and a fifth of the colours.
+pub fn shaded_strips(
+    nodes: &[[f32; 2]],
+    tension: &[f64],
+    shade: f64,
+) -> (Vec<Vec<[f32; 2]>>, Vec<rerun::Color>) {
+    let mut strips: Vec<Vec<[f32; 2]>> = Vec::new();
+    let mut colours = Vec::new();
+    let mut current = None;
+    for (i, &t) in tension.iter().enumerate() {
+        let level = (t / shade).round();
+        let (Some(&from), Some(&to)) = (nodes.get(i), nodes.get(i + 1)) else {
+            break;
+        };
+        match strips.last_mut() {
+            Some(strip) if current == Some(level) => strip.push(to),
+            _ => {
+                strips.push(vec![from, to]);
+                colours.push(tension_colour(level * shade));
+                current = Some(level);
+            }
+        }
+    }
+    (strips, colours)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_rope_of_one_shade_is_one_strip_through_every_node() {
+        let nodes = [[0.0, 0.0], [0.0, 0.5], [0.0, 1.0]];
+        let (strips, colours) = shaded_strips(&nodes, &[0.51, 0.49], SHADE);
+        assert_eq!(strips, vec![nodes.to_vec()]);
+        assert_eq!(colours, vec![tension_colour(0.5)]);
+    }
+
+    #[test]
+    fn each_change_of_shade_starts_a_strip_at_the_shared_node() {
+        let nodes = [[0.0, 0.0], [0.0, 0.25], [0.0, 0.5], [0.0, 0.75], [0.0, 1.0]];
+        let (strips, colours) = shaded_strips(&nodes, &[1.0, 1.0, 0.2, 0.0], SHADE);
+        assert_eq!(
+            strips,
+            vec![
+                nodes[0..3].to_vec(),
+                nodes[2..4].to_vec(),
+                nodes[3..5].to_vec()
+            ]
+        );
+        assert_eq!(colours.len(), 3);
+        // Every segment is drawn once: the strips' segments add up to the rope's.
+        let drawn: usize = strips.iter().map(|s| s.len() - 1).sum();
+        assert_eq!(drawn, 4);
+    }
+}

@@ -2,7 +2,9 @@
 //! profile, energy and tip time series, and the run's parameters. Knows nothing of the
 //! equations: it draws what a [`Frame`] holds.
 
-use super::colour::tension_colour;
+use super::colour::{SHADE, shaded_strips, tension_colour};
+use super::entities::{SERIES, SIDE_BY_SIDE, log10_abs};
+use super::entities::{SIM_TIME, STEP, path};
 use super::error::RecordingError;
 use crate::error::Diverged;
 use crate::model::Point;
@@ -18,173 +20,6 @@ const FLUSH_TIMEOUT: Duration = Duration::from_secs(5);
 
 /// Room for the time series of a batch of frames without reallocating.
 const BATCH_SERIES_CAPACITY: usize = 32;
-
-/// Entity paths: the contract with tests and with users' own queries.
-pub mod path {
-    pub const SEGMENTS: &str = "rope/segments";
-    pub const SUPPORT: &str = "rope/support";
-    /// What is running, over the support: method, scene, N and k, run by run.
-    pub const CAPTION: &str = "rope/caption";
-    /// Side by side: which colour is which method, at the rope view's top left.
-    pub const LEGEND: &str = "rope/legend";
-    pub const TIP: &str = "rope/tip";
-    pub const TRAIL: &str = "rope/trail";
-    pub const SCALE: &str = "rope/tension_scale";
-    pub const PROFILE: &str = "tension/profile";
-    pub const PROFILE_AXES: &str = "tension/axes";
-    pub const KINETIC: &str = "energy/kinetic";
-    pub const POTENTIAL: &str = "energy/potential";
-    pub const TOTAL: &str = "energy/total";
-    pub const DEVIATION: &str = "energy/deviation";
-    pub const SUPPORT_TENSION: &str = "support/tension";
-    pub const TIP_SPEED: &str = "tip/speed";
-    pub const TIP_ACCELERATION: &str = "tip/acceleration";
-    pub const CONSTRAINT_RESIDUAL: &str = "constraint/residual";
-    pub const VELOCITY_RESIDUAL: &str = "constraint/velocity_residual";
-    pub const TIP_ESTIMATE: &str = "error/tip_estimate";
-    pub const SHAPE_ESTIMATE: &str = "error/shape_estimate";
-    pub const TOLERANCE: &str = "error/tolerance";
-    pub const TOLERANCE_PASSED: &str = "error/tolerance_passed";
-    /// Decimal logarithms of the deviation and the estimates, for plots that read at a
-    /// glance (Rerun's have no log axis).
-    pub const LOG_DEVIATION: &str = "log10/energy_deviation";
-    pub const LOG_ERROR: &str = "log10/error";
-    pub const LOG_TIP_ESTIMATE: &str = "log10/error/tip_estimate";
-    pub const LOG_SHAPE_ESTIMATE: &str = "log10/error/shape_estimate";
-    pub const LOG_TOLERANCE: &str = "log10/error/tolerance";
-    pub const LOG_TOLERANCE_PASSED: &str = "log10/error/tolerance_passed";
-    pub const PROFILE_TICKS: &str = "tension/s_ticks";
-    /// Several methods side by side: each one's distance from the most accurate one's
-    /// string (the entity paths of each method end in `/{method}`).
-    pub const DISAGREEMENT: &str = "disagreement";
-    pub const LOG_DISAGREEMENT: &str = "log10/disagreement";
-    pub const EVENTS: &str = "events";
-    pub const PARAMETERS: &str = "parameters";
-}
-
-/// Timelines: simulated seconds, and the step count.
-pub const SIM_TIME: &str = "sim_time";
-pub const STEP: &str = "step";
-
-/// A time series: its entity path, legend name, colour, and how to read it off a frame.
-type Series = (&'static str, &'static str, [u8; 3], fn(&Frame) -> f64);
-
-/// The decimal logarithm of |x| as the plots draw it: a deviation below [`LOG_FLOOR`] (an
-/// exact zero among them) at the floor, a value a frame does not have (NaN) left out.
-fn log10_abs(x: f64) -> f64 {
-    if x.is_nan() {
-        f64::NAN
-    } else {
-        x.abs().log10().max(LOG_FLOOR)
-    }
-}
-
-/// Where the logarithmic plots stop: round-off of a double.
-const LOG_FLOOR: f64 = -16.0;
-
-/// Every time series the recording carries, styled once and filled by each batch.
-const SERIES: [Series; 16] = [
-    (path::KINETIC, "kinetic", [230, 120, 30], |f| {
-        f.energy.kinetic()
-    }),
-    (path::POTENTIAL, "potential", [60, 120, 220], |f| {
-        f.energy.potential
-    }),
-    // Mid grey: it reads on the viewer's dark theme and on the browser's light one.
-    (path::TOTAL, "total", [125, 125, 125], |f| f.energy.total()),
-    (
-        path::DEVIATION,
-        "(E − E_ref)/|E_ref|",
-        [200, 40, 40],
-        |f| f.energy_deviation,
-    ),
-    (path::SUPPORT_TENSION, "F_0", [200, 150, 0], |f| {
-        f.support_tension
-    }),
-    (path::TIP_SPEED, "|v_tip|", [40, 150, 80], |f| {
-        f.tip_velocity.norm()
-    }),
-    (path::TIP_ACCELERATION, "|a_tip|", [120, 60, 160], |f| {
-        f.tip_acceleration.norm()
-    }),
-    // Only a method that solves for its joints has one; the others leave it empty.
-    (
-        path::CONSTRAINT_RESIDUAL,
-        "max |g_j|",
-        [150, 150, 150],
-        |f| f.constraint_residual.unwrap_or(f64::NAN),
-    ),
-    // Only a method whose velocities leave the joints between projections has this.
-    (
-        path::VELOCITY_RESIDUAL,
-        "max |G v| before projection",
-        [90, 40, 160],
-        |f| f.velocity_residual.unwrap_or(f64::NAN),
-    ),
-    // A run with a shadow has these at the frames it shares with it.
-    (
-        path::TIP_ESTIMATE,
-        "estimated tip error",
-        [200, 40, 160],
-        |f| f.error_estimate.map_or(f64::NAN, |e| e.tip),
-    ),
-    (
-        path::SHAPE_ESTIMATE,
-        "estimated shape error",
-        [110, 110, 200],
-        |f| f.error_estimate.map_or(f64::NAN, |e| e.shape),
-    ),
-    (
-        path::LOG_DEVIATION,
-        "log₁₀ |E − E_ref|/|E_ref|",
-        [200, 40, 40],
-        |f| log10_abs(f.energy_deviation),
-    ),
-    (
-        path::LOG_TIP_ESTIMATE,
-        "log₁₀ estimated tip error",
-        [200, 40, 160],
-        |f| log10_abs(f.error_estimate.map_or(f64::NAN, |e| e.tip)),
-    ),
-    (
-        path::LOG_SHAPE_ESTIMATE,
-        "log₁₀ estimated shape error",
-        [110, 110, 200],
-        |f| log10_abs(f.error_estimate.map_or(f64::NAN, |e| e.shape)),
-    ),
-    // Only a method side by side with a more accurate one has these.
-    (
-        path::DISAGREEMENT,
-        "distance from the most accurate",
-        [120, 120, 120],
-        |f| disagreement(f),
-    ),
-    (
-        path::LOG_DISAGREEMENT,
-        "log₁₀ distance from the most accurate",
-        [120, 120, 120],
-        |f| log10_abs(disagreement(f)),
-    ),
-];
-
-/// The time series each of several methods side by side sends: what the plots show. A frame
-/// per method already multiplies what a viewer takes; the rest (kinetic and potential energy,
-/// the raw deviation and estimates, the tip's speed) stay with a run of one method, and so do
-/// the tip's trails.
-const SIDE_BY_SIDE: [&str; 7] = [
-    path::TOTAL,
-    path::SUPPORT_TENSION,
-    path::LOG_DEVIATION,
-    path::LOG_TIP_ESTIMATE,
-    path::DISAGREEMENT,
-    path::LOG_DISAGREEMENT,
-    path::CONSTRAINT_RESIDUAL,
-];
-
-/// A frame's distance from the most accurate method's string, if it has one.
-fn disagreement(f: &Frame) -> f64 {
-    f.lane.and_then(|l| l.disagreement).unwrap_or(f64::NAN)
-}
 
 /// The time series of one frame, one value per [`SERIES`] entry.
 type SeriesRow = (f64, i64, [f64; SERIES.len()]);
@@ -271,6 +106,11 @@ impl LaneLog {
 const SERIES_FRAMES: usize = 6;
 /// How long the time series may wait to be sent: the plots refresh at least this often.
 const SERIES_WAIT: Duration = Duration::from_millis(100);
+/// The same two side by side, where a chunk per series, lane and tenth of a second made the
+/// series a third of what a browser keeps (several methods, five series each): the plots
+/// refresh once a second.
+const SIDE_BY_SIDE_SERIES_FRAMES: usize = 25;
+const SIDE_BY_SIDE_SERIES_WAIT: Duration = Duration::from_secs(1);
 
 /// How many frames of the tip's path the trail keeps.
 const TRAIL_FRAMES: usize = 45;
@@ -458,20 +298,29 @@ impl RopeLogger {
     /// frame and entity, sent as columns (one chunk per entity for the whole batch, far
     /// cheaper than a log call per frame and entity).
     pub fn log_frames(&mut self, frames: &[Frame]) -> rerun::RecordingStreamResult<()> {
+        let side_by_side = self.lanes.len() > 1;
+        if side_by_side {
+            self.log_shared_shapes(frames)?;
+        }
         for lane in 0..self.lanes.len() {
             let mine: Vec<&Frame> = frames.iter().filter(|f| self.lanes[lane].owns(f)).collect();
             if mine.is_empty() {
                 continue;
             }
-            self.log_rope(lane, &mine)?;
-            self.log_tip_and_trail(lane, &mine)?;
-            self.log_tension_profile(lane, &mine)?;
+            if !side_by_side {
+                self.log_rope(lane, &mine)?;
+                self.log_tip_and_trail(lane, &mine)?;
+                self.log_tension_profile(lane, &mine)?;
+            }
             self.log_tolerance_passed(lane, &mine)?;
             self.gather_series(lane, &mine);
         }
         let gathered: usize = self.lanes.iter().map(|l| l.series.len()).sum();
-        if gathered >= SERIES_FRAMES * self.lanes.len() || self.series_sent.elapsed() >= SERIES_WAIT
-        {
+        let (most, wait) = match self.lanes.len() {
+            1 => (SERIES_FRAMES, SERIES_WAIT),
+            lanes => (SIDE_BY_SIDE_SERIES_FRAMES * lanes, SIDE_BY_SIDE_SERIES_WAIT),
+        };
+        if gathered >= most || self.series_sent.elapsed() >= wait {
             self.send_series()?;
         }
         Ok(())
@@ -537,6 +386,86 @@ impl RopeLogger {
         )
     }
 
+    /// Several methods side by side: each instant's ropes, tips and tension profiles as one
+    /// row of three entities shared by the methods (a method that stopped is no longer in
+    /// them). A browser's viewer keeps every chunk it is sent, each with its own schema and
+    /// index: three entities an instant instead of three per method, and the ropes in
+    /// [`SHADE`]s of tension (a strip per run of one shade, about half the points), make
+    /// what it keeps grow about a quarter as fast.
+    fn log_shared_shapes(&self, frames: &[Frame]) -> rerun::RecordingStreamResult<()> {
+        // The frames of one instant come together, in the methods' order.
+        let mut instants: Vec<Vec<&Frame>> = Vec::new();
+        let mut last_lane = None;
+        for f in frames {
+            let lane = f.lane.map(|l| l.index);
+            match instants.last_mut() {
+                Some(instant) if lane > last_lane => instant.push(f),
+                _ => instants.push(vec![f]),
+            }
+            last_lane = lane;
+        }
+        let lane_of = |f: &Frame| {
+            self.lanes
+                .iter()
+                .find(|l| l.owns(f))
+                .map_or((rerun::Color::from_rgb(20, 20, 20), ""), |l| {
+                    (l.colour, l.name)
+                })
+        };
+        let (mut ropes, mut rope_colours, mut rope_lengths) = (Vec::new(), Vec::new(), Vec::new());
+        let (mut tips, mut tip_colours, mut names) = (Vec::new(), Vec::new(), Vec::new());
+        let (mut profiles, mut profile_colours) = (Vec::new(), Vec::new());
+        let mut per_instant = Vec::with_capacity(instants.len());
+        for instant in &instants {
+            let before = ropes.len();
+            for f in instant {
+                let nodes: Vec<[f32; 2]> = f.nodes.iter().map(xy).collect();
+                let (strips, colours) = shaded_strips(&nodes, &f.tension, SHADE);
+                ropes.extend(strips);
+                rope_colours.extend(colours);
+                let (colour, name) = lane_of(f);
+                tips.push(xy(&f.tip()));
+                tip_colours.push(colour);
+                names.push(name);
+                profiles.push(profile(f));
+                profile_colours.push(colour);
+            }
+            rope_lengths.push(ropes.len() - before);
+            per_instant.push(instant.len());
+        }
+        let times = || {
+            [rerun::TimeColumn::new_duration_secs(
+                SIM_TIME,
+                instants.iter().map(|i| self.time_offset + i[0].time),
+            )]
+        };
+        self.rec.send_columns(
+            path::SEGMENTS,
+            times(),
+            rerun::LineStrips2D::update_fields()
+                .with_strips(ropes)
+                .with_colors(rope_colours)
+                .columns(rope_lengths)?,
+        )?;
+        self.rec.send_columns(
+            path::TIPS,
+            times(),
+            rerun::Points2D::update_fields()
+                .with_positions(tips)
+                .with_colors(tip_colours)
+                .with_labels(names)
+                .columns(per_instant.iter().copied())?,
+        )?;
+        self.rec.send_columns(
+            path::PROFILES,
+            times(),
+            rerun::LineStrips2D::update_fields()
+                .with_strips(profiles)
+                .with_colors(profile_colours)
+                .columns(per_instant)?,
+        )
+    }
+
     /// The tip, and its trail as it stood at each frame.
     fn log_tip_and_trail(
         &mut self,
@@ -582,17 +511,7 @@ impl RopeLogger {
         lane: usize,
         frames: &[&Frame],
     ) -> rerun::RecordingStreamResult<()> {
-        let profiles: Vec<Vec<[f32; 2]>> = frames
-            .iter()
-            .map(|f| {
-                let n = f.tension.len() as f32;
-                f.tension
-                    .iter()
-                    .enumerate()
-                    .map(|(i, &t)| [(i as f32 + 0.5) / n, -(t as f32)])
-                    .collect()
-            })
-            .collect();
+        let profiles: Vec<Vec<[f32; 2]>> = frames.iter().map(|f| profile(f)).collect();
         self.rec.send_columns(
             self.lanes[lane].at(path::PROFILE),
             self.frame_times(frames),
@@ -695,28 +614,10 @@ impl RopeLogger {
         Ok(())
     }
 
-    /// How one method of several side by side is drawn: its rope as any (tension colours),
-    /// its tip, profile and time series in its own colour, named by it.
+    /// How one method of several side by side is drawn in the plots: in its own colour,
+    /// named by it.
     fn style_lane(&self, lane: &LaneLog) -> rerun::RecordingStreamResult<()> {
         let (method, colour) = (lane.name, lane.colour);
-        self.rec.log_static(
-            lane.at(path::SEGMENTS),
-            &rerun::LineStrips2D::update_fields().with_radii([ROPE_RADIUS]),
-        )?;
-        self.rec.log_static(
-            lane.at(path::TIP),
-            &rerun::Points2D::update_fields()
-                .with_radii([0.018])
-                .with_colors([colour])
-                .with_labels([method])
-                .with_show_labels(true),
-        )?;
-        self.rec.log_static(
-            lane.at(path::PROFILE),
-            &rerun::LineStrips2D::update_fields()
-                .with_radii([0.008])
-                .with_colors([colour]),
-        )?;
         for (entity, name, ..) in SERIES.into_iter().filter(|(e, ..)| lane.sends(e)) {
             let name = if entity.starts_with("energy/") {
                 format!("{method} {name}")
@@ -732,6 +633,17 @@ impl RopeLogger {
         }
         Ok(())
     }
+}
+
+/// F(s) of a frame drawn upward: x = s at each segment's middle, y = −F (the 2D view's y
+/// points down).
+fn profile(f: &Frame) -> Vec<[f32; 2]> {
+    let n = f.tension.len() as f32;
+    f.tension
+        .iter()
+        .enumerate()
+        .map(|(i, &t)| [(i as f32 + 0.5) / n, -(t as f32)])
+        .collect()
 }
 
 /// A point as the viewer takes it.
@@ -763,6 +675,17 @@ impl FrameSink for RopeLogger {
         for lane in &self.lanes {
             self.style_lane(lane)?;
         }
+        // The shared shapes' styling; their colours and names come with each instant.
+        self.rec.log_static(
+            path::TIPS,
+            &rerun::Points2D::update_fields()
+                .with_radii([0.018])
+                .with_show_labels(true),
+        )?;
+        self.rec.log_static(
+            path::PROFILES,
+            &rerun::LineStrips2D::update_fields().with_radii([0.008]),
+        )?;
         let names: Vec<&str> = self.lanes.iter().map(|l| l.name).collect();
         self.rec.log_static(
             path::LEGEND,
@@ -785,8 +708,8 @@ impl FrameSink for RopeLogger {
         self.log_run_text(headline, markdown.join("\n\n---\n\n"))
     }
 
-    /// The rope and its profile leave the view where the method stopped, and the events say
-    /// when and why.
+    /// The events say when and why a method stopped (its rope, tip and profile are no longer
+    /// in the instants after its last frame).
     fn lane_ended(&mut self, lane: usize, why: &Diverged) -> Result<(), RecordingError> {
         self.send_series()?;
         let Some(lane) = self.lanes.iter().find(|l| l.index == Some(lane)) else {
@@ -799,13 +722,6 @@ impl FrameSink for RopeLogger {
                 [(self.step_offset + why.step) as i64],
             )
         };
-        for entity in [path::SEGMENTS, path::TIP, path::PROFILE] {
-            self.rec.send_columns(
-                lane.at(entity),
-                times(),
-                rerun::Clear::new(false).columns_of_unit_batches()?,
-            )?;
-        }
         self.rec.send_columns(
             path::EVENTS,
             times(),

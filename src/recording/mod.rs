@@ -2,6 +2,7 @@
 //!
 //! * [`logger`]: [`RopeLogger`](logger::RopeLogger), the [`FrameSink`](crate::run::FrameSink)
 //!   that draws frames as Rerun entities (it knows nothing of the equations);
+//! * [`entities`]: the entity paths, timelines and time series, by name;
 //! * [`blueprint`]: the viewer's layout, one function per view; [`colour`]: the tension map;
 //! * [`destinations`]: the flags that name where the recording goes, and opening them;
 //! * [`viewer_sinks`]: links to viewers that can never stall a run;
@@ -10,6 +11,7 @@
 pub mod blueprint;
 pub mod colour;
 pub mod destinations;
+pub mod entities;
 pub mod error;
 pub mod logger;
 pub mod viewer_sinks;

@@ -2,12 +2,12 @@
 //! its live error estimate (the shadow at N/2), so that the rule models the scene at hand
 //! rather than the worst of the six scenes the committed error models were fitted to.
 
-use super::cost::Cost;
-use super::estimate::Shadow;
-use super::simulate::{self, Options, Watch};
-use crate::error::Diverged;
+use super::cost::{self, Cost};
+use super::simulate::{self, Options};
+use crate::error::{ConfigError, Diverged};
 use crate::methods::MethodKind;
 use crate::methods::error_model::ErrorModel;
+use crate::methods::tolerance::{self, Choice};
 use crate::model::Scene;
 use std::time::Instant;
 
@@ -70,26 +70,16 @@ pub fn fly(method: MethodKind, scene: &Scene, duration: f64) -> Pilot {
     };
     for segments in LEVELS {
         let dt = method.default_dt(segments);
-        let (Ok(mut run), Ok(Some(mut shadow))) = (
-            method.build(scene, segments, dt),
-            Shadow::new(method, scene, segments, dt),
-        ) else {
+        let run = simulate::run_shadowed(method, scene, segments, dt, &options, |_| {});
+        if run.refused.is_some() {
             continue;
-        };
-        let watch = Watch {
-            shadow: &mut shadow,
-            tolerance: None,
-        };
-        let outcome = simulate::run_watched(run.as_mut(), Some(watch), &options, None, |_| {
-            std::ops::ControlFlow::Continue(())
-        });
-        let lost = outcome.estimate.as_ref().and_then(|e| e.lost.clone());
-        if let Some(why) = outcome.diverged.or(lost) {
+        }
+        if let Some(why) = run.diverged.or(run.lost) {
             pilot.diverged = Some(why);
             break;
         }
-        if let Some(estimate) = outcome.estimate {
-            pilot.measured.push((segments, estimate.max_tip));
+        if let Some(max_tip) = run.max_tip {
+            pilot.measured.push((segments, max_tip));
         }
     }
     if pilot.diverged.is_none() {
@@ -115,5 +105,74 @@ fn own_model(method: MethodKind, measured: &[(usize, f64)]) -> Option<ErrorModel
         order: model.order.max(1.0),
         safety: model.safety * SAFETY,
         ..model
+    })
+}
+
+/// What `--tolerance EPS` chooses for `scene`, for a run of `duration` logging `log_rate`
+/// frames per time unit within `memory` bytes: the cheapest choice whose run fits in
+/// [`tolerance::MAX_SECONDS`] of CPU and that memory, from the scene's own error models
+/// measured by pilot runs ([`fly`]), or from the committed models where those already prove a
+/// run cheaper than the pilots (or the pilots found none). Returns the pilots flown.
+pub fn choose(
+    eps: f64,
+    scene: &Scene,
+    duration: f64,
+    log_rate: f64,
+    memory: u64,
+) -> Result<(Choice, Vec<Pilot>), ConfigError> {
+    scene.validate()?;
+    if !(eps.is_finite() && eps > 0.0) {
+        return Err(ConfigError::Tolerance(eps));
+    }
+    if duration.is_infinite() {
+        return Err(ConfigError::ToleranceEndless(eps));
+    }
+    let duration = duration.max(0.0);
+    // The chosen run carries the live estimate (--tolerance needs it): its shadow counts.
+    let cost_of = |method, segments, dt| {
+        Cost::of_estimated_run(method, segments, dt, duration, log_rate, true)
+    };
+    let fits = |method, segments, dt| {
+        let cost = cost_of(method, segments, dt);
+        cost.bytes <= memory && cost.seconds <= tolerance::MAX_SECONDS
+    };
+    let committed = tolerance::choose(eps, duration, scene, fits);
+    // The pilots cost what runs at their levels cost; a choice the committed models already
+    // prove cheaper than that is taken as it is.
+    let pilots_cost: f64 = tolerance::startable(scene)
+        .map(|m| predicted_seconds(m, duration))
+        .sum();
+    if let Some(choice) = committed
+        && cost_of(choice.method, choice.segments, choice.dt).seconds <= pilots_cost
+    {
+        return Ok((choice, Vec::new()));
+    }
+    let pilots: Vec<Pilot> = tolerance::startable(scene)
+        .map(|m| fly(m, scene, duration))
+        .collect();
+    let own_model = |m: MethodKind| pilots.iter().find(|p| p.method == m).and_then(|p| p.model);
+    if let Some(choice) =
+        tolerance::choose_with(eps, duration, scene, own_model, LEVELS[0], fits).or(committed)
+    {
+        return Ok((choice, pilots));
+    }
+    let best =
+        tolerance::tightest(duration, scene, fits).ok_or(ConfigError::ToleranceNoMethod(eps))?;
+    let cost = cost_of(best.method, best.segments, best.dt);
+    Err(ConfigError::ToleranceUnreachable {
+        tolerance: eps,
+        limit: format!(
+            "{} of CPU and {} of memory",
+            cost::seconds_text(tolerance::MAX_SECONDS),
+            cost::bytes_text(memory)
+        ),
+        tightest: best.predicted_error,
+        method: best.method.name(),
+        segments: best.segments,
+        cost: format!(
+            "{} of CPU, {}",
+            cost::seconds_text(cost.seconds),
+            cost::bytes_text(cost.bytes)
+        ),
     })
 }

@@ -5,7 +5,8 @@
 use super::estimate::{ErrorEstimate, STRIDE, Shadow};
 pub use super::trust::{ENERGY_BLOWUP, REFERENCE_STEP, TENSION_BLOWUP, reference_energy};
 use crate::error::Diverged;
-use crate::methods::{Method, Observation, StepStatistics, stability_hint};
+use crate::methods::{Method, MethodKind, Observation, StepStatistics, stability_hint};
+use crate::model::Scene;
 use crate::model::geometry::{self, Energy, Point};
 use nalgebra::Vector2;
 use std::ops::ControlFlow;
@@ -194,6 +195,64 @@ pub fn run(
     on_frame: impl FnMut(Frame) -> ControlFlow<()>,
 ) -> Outcome {
     run_watched(method, None, options, stop, on_frame)
+}
+
+/// How a run with its shadow at N/2 went ([`run_shadowed`]).
+#[derive(Debug, Default)]
+pub struct Shadowed {
+    /// Why the run could not start (the method cannot start from the scene, or N is too
+    /// coarse to halve), if it could not.
+    pub refused: Option<String>,
+    pub diverged: Option<Diverged>,
+    /// Why the shadow stopped before the run, if it did.
+    pub lost: Option<Diverged>,
+    /// The largest live tip estimate over the frames.
+    pub max_tip: Option<f64>,
+}
+
+/// `method` from `scene` at N = `segments` and step `dt`, with its shadow at N/2, to
+/// `options.duration`: the run the study's estimate check and the tolerance's pilots both
+/// make. `on_frame` sees every frame, its estimate in it.
+pub fn run_shadowed(
+    method: MethodKind,
+    scene: &Scene,
+    segments: usize,
+    dt: f64,
+    options: &Options,
+    mut on_frame: impl FnMut(&Frame),
+) -> Shadowed {
+    let built = method
+        .build(scene, segments, dt)
+        .and_then(|m| Ok((m, Shadow::new(method, scene, segments, dt)?)));
+    let (mut run, mut shadow) = match built {
+        Ok((run, Some(shadow))) => (run, shadow),
+        Ok((_, None)) => {
+            return Shadowed {
+                refused: Some(format!("N = {segments} is too coarse to halve")),
+                ..Shadowed::default()
+            };
+        }
+        Err(err) => {
+            return Shadowed {
+                refused: Some(err.to_string()),
+                ..Shadowed::default()
+            };
+        }
+    };
+    let watch = Watch {
+        shadow: &mut shadow,
+        tolerance: None,
+    };
+    let outcome = run_watched(run.as_mut(), Some(watch), options, None, |frame| {
+        on_frame(&frame);
+        ControlFlow::Continue(())
+    });
+    Shadowed {
+        refused: None,
+        diverged: outcome.diverged,
+        lost: outcome.estimate.as_ref().and_then(|e| e.lost.clone()),
+        max_tip: outcome.estimate.map(|e| e.max_tip),
+    }
 }
 
 /// As [`run`], with the live error estimate of `watch` (if any) in every frame the shadow

@@ -10,10 +10,8 @@ use crate::methods::MethodKind;
 use crate::methods::error_model::ErrorModel;
 use crate::model::Scene;
 use crate::model::geometry::{self, Point};
-use crate::run::estimate::Shadow;
-use crate::run::simulate::{self, Options, Watch};
+use crate::run::simulate::{self, Options};
 use rayon::prelude::*;
-use std::ops::ControlFlow;
 
 /// The estimate is judged where the true error is above this (below it, round-off and the
 /// reference's own error are the same size as what is measured).
@@ -189,30 +187,12 @@ pub fn run_cell(
         diverged: None,
         lost: None,
     };
-    let built = method
-        .build(&scene, segments, dt)
-        .and_then(|m| Ok((m, Shadow::new(method, &scene, segments, dt)?)));
-    let (mut run, mut shadow) = match built {
-        Ok((run, Some(shadow))) => (run, shadow),
-        Ok((_, None)) => {
-            cell.refused = Some(format!("N = {segments} is too coarse to halve"));
-            return cell;
-        }
-        Err(err) => {
-            cell.refused = Some(err.to_string());
-            return cell;
-        }
-    };
     let options = Options {
         duration,
         log_rate: LOG_RATE,
     };
-    let watch = Watch {
-        shadow: &mut shadow,
-        tolerance: None,
-    };
     let samples = &mut cell.samples;
-    let outcome = simulate::run_watched(run.as_mut(), Some(watch), &options, None, |frame| {
+    let run = simulate::run_shadowed(method, &scene, segments, dt, &options, |frame| {
         if let Some(e) = frame.error_estimate {
             samples.push(Sample {
                 time: frame.time,
@@ -220,10 +200,10 @@ pub fn run_cell(
                 truth: (frame.tip() - reference.at(frame.time)).norm(),
             });
         }
-        ControlFlow::Continue(())
     });
-    cell.diverged = outcome.diverged;
-    cell.lost = outcome.estimate.and_then(|e| e.lost);
+    cell.refused = run.refused;
+    cell.diverged = run.diverged;
+    cell.lost = run.lost;
     cell
 }
 

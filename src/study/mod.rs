@@ -11,7 +11,9 @@
 //! * [`blow_up`]: `--blow-up T`, when the report's scheme blows up and what grows first;
 //! * [`long_charts`]: the charts of those two;
 //! * [`estimate_check`]: `--estimate-check`, the live error estimate against the truth, and
-//!   the error models over all the scenes; [`check_chart`]: its chart.
+//!   the error models over all the scenes; [`check_chart`]: its chart;
+//! * [`tolerance_check`]: `--tolerance-check`, what `--tolerance` chooses against the truth
+//!   and against the cheapest run of a grid; [`tolerance_chart`]: its chart.
 
 pub mod blow_up;
 pub mod charts;
@@ -25,6 +27,8 @@ pub mod record;
 pub mod reference;
 pub mod report;
 pub mod shard;
+pub mod tolerance_chart;
+pub mod tolerance_check;
 
 pub use grid::{Row, Spec, Status, fit, run_cell, run_grid, shape};
 pub use reference::{Reference, measure_errors, reference};
@@ -312,5 +316,23 @@ pub fn execute_estimate_check(
     write(&out.join("estimate_check.md"), &markdown)?;
     charts::register_font()?;
     check_chart::write(out, &cells)?;
+    Ok(markdown)
+}
+
+/// What `--tolerance` chooses in each scene of `spec`, against the truth and the grid's
+/// cheapest run; writes `tolerance_check.md` and the chart `tolerance_check.svg`/`.png` into
+/// `out`. Returns the Markdown. `tick` is called once per reference, run and choice.
+pub fn execute_tolerance_check(
+    spec: &tolerance_check::CheckSpec,
+    out: &Path,
+    command: &str,
+    tick: impl Fn(),
+) -> anyhow::Result<String> {
+    create_dir(out)?;
+    let checked = tolerance_check::check(spec, tick)?;
+    let markdown = tolerance_check::markdown(spec, &checked, command);
+    write(&out.join("tolerance_check.md"), &markdown)?;
+    charts::register_font()?;
+    tolerance_chart::write(out, &checked.cells)?;
     Ok(markdown)
 }

@@ -136,6 +136,33 @@ impl Recording {
         self.temporal_values(entity, labels, |t: &rerun::components::Text| t.to_string())
     }
 
+    /// Each row of `entity` on the timelines: its `sim_time` and its points' labels.
+    pub fn point_labels_by_row(&self, entity: &str) -> Vec<(f64, Vec<String>)> {
+        let timeline = rerun::TimelineName::from_static_str("sim_time");
+        let labels = rerun::Points2D::descriptor_labels().component;
+        let mut rows: Vec<(f64, Vec<String>)> = self
+            .chunks
+            .get(entity)
+            .into_iter()
+            .flatten()
+            .filter(|c| !c.is_static())
+            .flat_map(|c| {
+                let times: Vec<f64> = c
+                    .timelines()
+                    .get(&timeline)
+                    .map(|col| col.times_raw().iter().map(|&ns| ns as f64 * 1e-9).collect())
+                    .unwrap_or_default();
+                let names: Vec<Vec<String>> = c
+                    .iter_component::<rerun::components::Text>(labels)
+                    .map(|row| row.iter().map(|t| t.to_string()).collect())
+                    .collect();
+                times.into_iter().zip(names).collect::<Vec<_>>()
+            })
+            .collect();
+        rows.sort_by(|a, b| a.0.total_cmp(&b.0));
+        rows
+    }
+
     /// The texts of the log lines on the timelines at `entity`.
     pub fn log_texts(&self, entity: &str) -> Vec<String> {
         let text = rerun::TextLog::descriptor_text().component;

@@ -1,0 +1,176 @@
+//! What a recording holds, by name: the entity paths (the contract with tests and with
+//! users' own queries), the timelines, and every time series with its legend name, colour and
+//! how it is read off a frame.
+
+use crate::run::Frame;
+
+/// Entity paths: the contract with tests and with users' own queries.
+pub mod path {
+    pub const SEGMENTS: &str = "rope/segments";
+    pub const SUPPORT: &str = "rope/support";
+    /// What is running, over the support: method, scene, N and k, run by run.
+    pub const CAPTION: &str = "rope/caption";
+    /// Side by side: which colour is which method, at the rope view's top left.
+    pub const LEGEND: &str = "rope/legend";
+    pub const TIP: &str = "rope/tip";
+    /// Side by side: every method's tip in one entity, a point each, in the method's colour
+    /// and named by it (the ropes share `rope/segments`, the profiles `tension/profiles`).
+    pub const TIPS: &str = "rope/tips";
+    pub const PROFILES: &str = "tension/profiles";
+    pub const TRAIL: &str = "rope/trail";
+    pub const SCALE: &str = "rope/tension_scale";
+    pub const PROFILE: &str = "tension/profile";
+    pub const PROFILE_AXES: &str = "tension/axes";
+    pub const KINETIC: &str = "energy/kinetic";
+    pub const POTENTIAL: &str = "energy/potential";
+    pub const TOTAL: &str = "energy/total";
+    pub const DEVIATION: &str = "energy/deviation";
+    pub const SUPPORT_TENSION: &str = "support/tension";
+    pub const TIP_SPEED: &str = "tip/speed";
+    pub const TIP_ACCELERATION: &str = "tip/acceleration";
+    pub const CONSTRAINT_RESIDUAL: &str = "constraint/residual";
+    pub const VELOCITY_RESIDUAL: &str = "constraint/velocity_residual";
+    pub const TIP_ESTIMATE: &str = "error/tip_estimate";
+    pub const SHAPE_ESTIMATE: &str = "error/shape_estimate";
+    pub const TOLERANCE: &str = "error/tolerance";
+    pub const TOLERANCE_PASSED: &str = "error/tolerance_passed";
+    /// Decimal logarithms of the deviation and the estimates, for plots that read at a
+    /// glance (Rerun's have no log axis).
+    pub const LOG_DEVIATION: &str = "log10/energy_deviation";
+    pub const LOG_ERROR: &str = "log10/error";
+    pub const LOG_TIP_ESTIMATE: &str = "log10/error/tip_estimate";
+    pub const LOG_SHAPE_ESTIMATE: &str = "log10/error/shape_estimate";
+    pub const LOG_TOLERANCE: &str = "log10/error/tolerance";
+    pub const LOG_TOLERANCE_PASSED: &str = "log10/error/tolerance_passed";
+    pub const PROFILE_TICKS: &str = "tension/s_ticks";
+    /// Several methods side by side: each one's distance from the most accurate one's
+    /// string (the entity paths of each method end in `/{method}`).
+    pub const DISAGREEMENT: &str = "disagreement";
+    pub const LOG_DISAGREEMENT: &str = "log10/disagreement";
+    pub const EVENTS: &str = "events";
+    pub const PARAMETERS: &str = "parameters";
+}
+
+/// Timelines: simulated seconds, and the step count.
+pub const SIM_TIME: &str = "sim_time";
+pub const STEP: &str = "step";
+
+/// A time series: its entity path, legend name, colour, and how to read it off a frame.
+pub type Series = (&'static str, &'static str, [u8; 3], fn(&Frame) -> f64);
+
+/// The decimal logarithm of |x| as the plots draw it: a deviation below [`LOG_FLOOR`] (an
+/// exact zero among them) at the floor, a value a frame does not have (NaN) left out.
+pub fn log10_abs(x: f64) -> f64 {
+    if x.is_nan() {
+        f64::NAN
+    } else {
+        x.abs().log10().max(LOG_FLOOR)
+    }
+}
+
+/// Where the logarithmic plots stop: round-off of a double.
+const LOG_FLOOR: f64 = -16.0;
+
+/// Every time series the recording carries, styled once and filled by each batch.
+pub const SERIES: [Series; 16] = [
+    (path::KINETIC, "kinetic", [230, 120, 30], |f| {
+        f.energy.kinetic()
+    }),
+    (path::POTENTIAL, "potential", [60, 120, 220], |f| {
+        f.energy.potential
+    }),
+    // Mid grey: it reads on the viewer's dark theme and on the browser's light one.
+    (path::TOTAL, "total", [125, 125, 125], |f| f.energy.total()),
+    (
+        path::DEVIATION,
+        "(E − E_ref)/|E_ref|",
+        [200, 40, 40],
+        |f| f.energy_deviation,
+    ),
+    (path::SUPPORT_TENSION, "F_0", [200, 150, 0], |f| {
+        f.support_tension
+    }),
+    (path::TIP_SPEED, "|v_tip|", [40, 150, 80], |f| {
+        f.tip_velocity.norm()
+    }),
+    (path::TIP_ACCELERATION, "|a_tip|", [120, 60, 160], |f| {
+        f.tip_acceleration.norm()
+    }),
+    // Only a method that solves for its joints has one; the others leave it empty.
+    (
+        path::CONSTRAINT_RESIDUAL,
+        "max |g_j|",
+        [150, 150, 150],
+        |f| f.constraint_residual.unwrap_or(f64::NAN),
+    ),
+    // Only a method whose velocities leave the joints between projections has this.
+    (
+        path::VELOCITY_RESIDUAL,
+        "max |G v| before projection",
+        [90, 40, 160],
+        |f| f.velocity_residual.unwrap_or(f64::NAN),
+    ),
+    // A run with a shadow has these at the frames it shares with it.
+    (
+        path::TIP_ESTIMATE,
+        "estimated tip error",
+        [200, 40, 160],
+        |f| f.error_estimate.map_or(f64::NAN, |e| e.tip),
+    ),
+    (
+        path::SHAPE_ESTIMATE,
+        "estimated shape error",
+        [110, 110, 200],
+        |f| f.error_estimate.map_or(f64::NAN, |e| e.shape),
+    ),
+    (
+        path::LOG_DEVIATION,
+        "log₁₀ |E − E_ref|/|E_ref|",
+        [200, 40, 40],
+        |f| log10_abs(f.energy_deviation),
+    ),
+    (
+        path::LOG_TIP_ESTIMATE,
+        "log₁₀ estimated tip error",
+        [200, 40, 160],
+        |f| log10_abs(f.error_estimate.map_or(f64::NAN, |e| e.tip)),
+    ),
+    (
+        path::LOG_SHAPE_ESTIMATE,
+        "log₁₀ estimated shape error",
+        [110, 110, 200],
+        |f| log10_abs(f.error_estimate.map_or(f64::NAN, |e| e.shape)),
+    ),
+    // Only a method side by side with a more accurate one has these.
+    (
+        path::DISAGREEMENT,
+        "distance from the most accurate",
+        [120, 120, 120],
+        |f| disagreement(f),
+    ),
+    (
+        path::LOG_DISAGREEMENT,
+        "log₁₀ distance from the most accurate",
+        [120, 120, 120],
+        |f| log10_abs(disagreement(f)),
+    ),
+];
+
+/// The time series each of several methods side by side sends: what the plots show. A frame
+/// per method already multiplies what a viewer takes; the rest (kinetic and potential energy,
+/// the raw deviation and estimates, the tip's speed) stay with a run of one method, and so do
+/// the tip's trails.
+pub const SIDE_BY_SIDE: [&str; 7] = [
+    path::TOTAL,
+    path::SUPPORT_TENSION,
+    path::LOG_DEVIATION,
+    path::LOG_TIP_ESTIMATE,
+    path::DISAGREEMENT,
+    path::LOG_DISAGREEMENT,
+    path::CONSTRAINT_RESIDUAL,
+];
+
+/// A frame's distance from the most accurate method's string, if it has one.
+fn disagreement(f: &Frame) -> f64 {
+    f.lane.and_then(|l| l.disagreement).unwrap_or(f64::NAN)
+}

@@ -1,0 +1,374 @@
+//! `rope study --tolerance-check`: `--tolerance EPS` checked against the truth. For each scene
+//! and EPS, the run `rope run --tolerance EPS` would make (its pilots, then the chosen method,
+//! N and k with its shadow) is measured against a converged reference at every frame, and its
+//! CPU, pilots included, set beside the cheapest run of a (method, N) grid at the methods'
+//! default steps that also holds EPS.
+
+use super::estimate_check::Trajectory;
+use crate::methods::MethodKind;
+use crate::methods::tolerance;
+use crate::model::{Point, Scene};
+use crate::run::pilot;
+use crate::run::simulate::{self, Options};
+use rayon::prelude::*;
+use std::ops::ControlFlow;
+use std::time::Instant;
+
+/// Frames per time unit at which the tip is compared with the reference.
+pub const LOG_RATE: f64 = 60.0;
+
+/// A tolerance is checked only where the reference's own error is at most this fraction of it.
+pub const REFERENCE_MARGIN: f64 = 0.1;
+
+/// The chosen run's CPU may be at most this many times the grid's cheapest.
+pub const CPU_FACTOR: f64 = 3.0;
+
+/// What to check.
+#[derive(Clone, Debug)]
+pub struct CheckSpec {
+    pub scenes: Vec<Scene>,
+    pub tolerances: Vec<f64>,
+    pub duration: f64,
+    /// The reference: [`MethodKind::REFERENCE`] at N/2, N and 2N, extrapolated.
+    pub reference_segments: usize,
+    /// The grid's segment counts (every startable method at each, its default step).
+    pub grid: Vec<usize>,
+}
+
+impl Default for CheckSpec {
+    /// The issue's check: the six scenes of the estimate check, EPS = 1e-2, 1e-3 and 1e-4
+    /// (each where the reference allows), to t = 3, against the chain extrapolated from
+    /// N = 400, 800 and 1600, beside a grid up to N = 400.
+    fn default() -> Self {
+        Self {
+            scenes: super::estimate_check::CheckSpec::default().scenes,
+            tolerances: vec![1e-2, 1e-3, 1e-4],
+            duration: 3.0,
+            reference_segments: 800,
+            grid: vec![16, 25, 32, 50, 64, 100, 141, 200, 283, 400],
+        }
+    }
+}
+
+impl CheckSpec {
+    /// The small check CI runs: the release from 30° and mode 1 at EPS = 1e-2, against the
+    /// chain extrapolated from N = 100, 200 and 400.
+    pub fn quick() -> Self {
+        Self {
+            scenes: vec![
+                Scene::Release { angle_deg: 30.0 },
+                Scene::Mode {
+                    number: 1,
+                    amplitude: 0.05,
+                },
+            ],
+            tolerances: vec![1e-2],
+            duration: 3.0,
+            reference_segments: 200,
+            grid: vec![16, 25, 32, 50, 64, 100],
+        }
+    }
+}
+
+/// The converged tip of one scene: the reference method at N and 2N, extrapolated in N at the
+/// order that the runs at N/2, N and 2N show.
+pub struct TipReference {
+    coarse: Trajectory,
+    fine: Trajectory,
+    /// The order observed from the three, between 1 (a whip) and 2 (the chain's nominal).
+    pub order: f64,
+    /// The largest change of the extrapolated tip over the frames when it is made from N and
+    /// 2N rather than from N/2 and N: a bound on the coarser one's error, taken for this
+    /// one's (conservative where the extrapolation converges).
+    pub own_error: f64,
+}
+
+impl TipReference {
+    /// Computes the three runs (in parallel) and reads the order and own error at the frames.
+    pub fn compute(scene: &Scene, segments: usize, duration: f64) -> anyhow::Result<Self> {
+        let mut runs = [segments / 2, segments, 2 * segments]
+            .into_par_iter()
+            .map(|n| Trajectory::compute(scene, n, duration))
+            .collect::<anyhow::Result<Vec<_>>>()?;
+        let (Some(fine), Some(coarse), Some(half)) = (runs.pop(), runs.pop(), runs.pop()) else {
+            anyhow::bail!("three reference runs expected");
+        };
+        let frames = frame_times(duration);
+        let largest = |a: &Trajectory, b: &Trajectory| {
+            frames
+                .iter()
+                .map(|&t| (a.at(t) - b.at(t)).norm())
+                .fold(0.0, f64::max)
+        };
+        let (step_coarse, step_fine) = (largest(&coarse, &half), largest(&fine, &coarse));
+        let order = if step_fine > 0.0 {
+            (step_coarse / step_fine).log2().clamp(1.0, 2.0)
+        } else {
+            2.0
+        };
+        let extrapolated = |f: Point, c: Point| f + (f - c) / (2f64.powf(order) - 1.0);
+        let own_error = frames
+            .iter()
+            .map(|&t| {
+                let finer = extrapolated(fine.at(t), coarse.at(t));
+                let coarser = extrapolated(coarse.at(t), half.at(t));
+                (finer - coarser).norm()
+            })
+            .fold(0.0, f64::max);
+        Ok(Self {
+            coarse,
+            fine,
+            order,
+            own_error,
+        })
+    }
+
+    /// The reference tip at time `t`.
+    pub fn at(&self, t: f64) -> Point {
+        let (fine, coarse) = (self.fine.at(t), self.coarse.at(t));
+        fine + (fine - coarse) / (2f64.powf(self.order) - 1.0)
+    }
+}
+
+/// The frame times of a run of `duration` at [`LOG_RATE`].
+fn frame_times(duration: f64) -> Vec<f64> {
+    let frames = (duration * LOG_RATE).round() as usize;
+    (0..=frames).map(|j| j as f64 / LOG_RATE).collect()
+}
+
+/// One run measured against the reference.
+#[derive(Clone, Copy, Debug)]
+pub struct Measured {
+    pub method: MethodKind,
+    pub segments: usize,
+    pub dt: f64,
+    /// The largest distance of the tip from the reference's over the frames.
+    pub worst: f64,
+    /// Wall seconds of one thread.
+    pub seconds: f64,
+}
+
+/// What `--tolerance EPS` did in one scene, and the grid's cheapest run that holds EPS.
+#[derive(Clone, Debug)]
+pub struct Cell {
+    pub scene: Scene,
+    pub tolerance: f64,
+    /// Why EPS was not checked (the reference not fine enough, or the rule refused it).
+    pub skipped: Option<String>,
+    /// The chosen run, measured; its `seconds` are the run's with its shadow.
+    pub chosen: Option<Measured>,
+    /// Seconds the pilots took (0 where the committed models chose).
+    pub pilot_seconds: f64,
+    /// Where the choice came from: the pilots or the committed models.
+    pub from_pilots: bool,
+    pub cheapest: Option<Measured>,
+}
+
+impl Cell {
+    /// Whether the chosen run held EPS at every frame.
+    pub fn held(&self) -> Option<bool> {
+        self.chosen.map(|c| c.worst <= self.tolerance)
+    }
+
+    /// The chosen run's CPU, pilots included, over the grid's cheapest.
+    pub fn cpu_ratio(&self) -> Option<f64> {
+        let (chosen, cheapest) = (self.chosen?, self.cheapest?);
+        Some((chosen.seconds + self.pilot_seconds) / cheapest.seconds)
+    }
+}
+
+/// Runs `method` at N = `segments` and its default step from `scene`, its shadow with it if
+/// `shadowed`, and measures it against `reference`; `None` if it could not start or
+/// diverged.
+fn measure(
+    method: MethodKind,
+    scene: &Scene,
+    segments: usize,
+    dt: f64,
+    duration: f64,
+    shadowed: bool,
+    reference: &TipReference,
+) -> Option<Measured> {
+    let options = Options {
+        duration,
+        log_rate: LOG_RATE,
+    };
+    let mut worst: f64 = 0.0;
+    let mut on_frame = |tip: Point, t: f64| worst = worst.max((tip - reference.at(t)).norm());
+    let started = Instant::now();
+    let stopped = if shadowed {
+        let run = simulate::run_shadowed(method, scene, segments, dt, &options, |f| {
+            on_frame(f.tip(), f.time)
+        });
+        run.refused.is_some() || run.diverged.is_some()
+    } else {
+        let mut run = method.build(scene, segments, dt).ok()?;
+        let outcome = simulate::run(run.as_mut(), &options, None, |f| {
+            on_frame(f.tip(), f.time);
+            ControlFlow::Continue(())
+        });
+        outcome.diverged.is_some()
+    };
+    let seconds = started.elapsed().as_secs_f64();
+    (!stopped).then_some(Measured {
+        method,
+        segments,
+        dt,
+        worst,
+        seconds,
+    })
+}
+
+/// What one scene's reference showed of itself.
+#[derive(Clone, Copy, Debug)]
+pub struct ReferenceNote {
+    pub scene: Scene,
+    /// The order of the reference method's convergence in N there.
+    pub order: f64,
+    /// [`TipReference::own_error`].
+    pub own_error: f64,
+}
+
+/// The whole check's outcome.
+#[derive(Clone, Debug)]
+pub struct Checked {
+    /// A cell per scene and tolerance.
+    pub cells: Vec<Cell>,
+    /// A note per scene.
+    pub references: Vec<ReferenceNote>,
+}
+
+/// The whole check: a reference per scene (its three runs in parallel), then each scene's grid
+/// and each tolerance's choice one run at a time, so that their wall seconds are one
+/// thread's. `tick` is called once per reference and once per run.
+pub fn check(spec: &CheckSpec, tick: impl Fn()) -> anyhow::Result<Checked> {
+    let mut cells = Vec::new();
+    let mut references = Vec::new();
+    for scene in &spec.scenes {
+        let reference = TipReference::compute(scene, spec.reference_segments, spec.duration)?;
+        tick();
+        references.push(ReferenceNote {
+            scene: *scene,
+            order: reference.order,
+            own_error: reference.own_error,
+        });
+        // Each method up the grid until it holds the smallest EPS: a finer run could only
+        // cost more.
+        let smallest = spec
+            .tolerances
+            .iter()
+            .copied()
+            .fold(f64::INFINITY, f64::min);
+        let mut grid: Vec<Measured> = Vec::new();
+        for method in tolerance::startable(scene) {
+            for &n in &spec.grid {
+                let run = measure(
+                    method,
+                    scene,
+                    n,
+                    method.default_dt(n),
+                    spec.duration,
+                    false,
+                    &reference,
+                );
+                tick();
+                grid.extend(run);
+                if run.is_some_and(|r| r.worst <= smallest) {
+                    break;
+                }
+            }
+        }
+        for &eps in &spec.tolerances {
+            let mut cell = Cell {
+                scene: *scene,
+                tolerance: eps,
+                skipped: None,
+                chosen: None,
+                pilot_seconds: 0.0,
+                from_pilots: false,
+                cheapest: grid
+                    .iter()
+                    .filter(|r| r.worst <= eps)
+                    .min_by(|a, b| a.seconds.total_cmp(&b.seconds))
+                    .copied(),
+            };
+            if reference.own_error > REFERENCE_MARGIN * eps {
+                cell.skipped = Some(format!(
+                    "the reference's own error {:.1e} is above {REFERENCE_MARGIN} × EPS",
+                    reference.own_error
+                ));
+                cells.push(cell);
+                continue;
+            }
+            let started = Instant::now();
+            match pilot::choose(eps, scene, spec.duration, LOG_RATE, u64::MAX) {
+                Ok((choice, pilots)) => {
+                    cell.pilot_seconds = started.elapsed().as_secs_f64();
+                    cell.from_pilots = !pilots.is_empty();
+                    let (m, n, dt) = (choice.method, choice.segments, choice.dt);
+                    cell.chosen = measure(m, scene, n, dt, spec.duration, true, &reference);
+                }
+                Err(err) => cell.skipped = Some(err.to_string()),
+            }
+            tick();
+            cells.push(cell);
+        }
+    }
+    Ok(Checked { cells, references })
+}
+
+/// The check as Markdown: the references, then a row per scene and tolerance.
+pub fn markdown(spec: &CheckSpec, checked: &Checked, command: &str) -> String {
+    let mut text = format!(
+        "# `--tolerance` against the truth\n\n`{command}`\n\n\
+         For each scene and EPS, the run `rope run --tolerance EPS --duration {}` makes (its \
+         pilots, then the chosen method, N and k with its shadow at N/2) is compared at every \
+         frame ({LOG_RATE} per time unit) with the tip of a reference: the {} method at N = {}, \
+         {} and {}, extrapolated in N at the order the three show. Its CPU (one thread, pilots \
+         included) is set beside the cheapest run of the grid (every method that can start, at \
+         N = {:?} and its default step, without a shadow) whose largest error also holds EPS. \
+         A tolerance is checked only where the reference's own error is at most \
+         {REFERENCE_MARGIN} × EPS.\n\n## References\n\n| scene | observed order | own error |\n|---|---|---|\n",
+        spec.duration,
+        MethodKind::REFERENCE,
+        spec.reference_segments / 2,
+        spec.reference_segments,
+        2 * spec.reference_segments,
+        spec.grid
+    );
+    for r in &checked.references {
+        text += &format!("| {} | {:.2} | {:.1e} |\n", r.scene, r.order, r.own_error);
+    }
+    text += "\n## Choices\n\n| scene | EPS | chosen (from) | true worst error | held | CPU s (pilots + run) | grid's cheapest holding EPS | its worst error | its CPU s | ratio | notes |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+    let run = |m: &Measured| format!("{} N = {}, k = {:.1e}", m.method, m.segments, m.dt);
+    for c in &checked.cells {
+        let chosen = c.chosen.as_ref();
+        let cheapest = c.cheapest.as_ref();
+        text += &format!(
+            "| {} | {:.0e} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
+            c.scene,
+            c.tolerance,
+            chosen.map_or("–".to_owned(), |m| format!(
+                "{} ({})",
+                run(m),
+                if c.from_pilots { "pilots" } else { "committed" }
+            )),
+            chosen.map_or("–".to_owned(), |m| format!("{:.1e}", m.worst)),
+            match c.held() {
+                Some(true) => "yes",
+                Some(false) => "**no**",
+                None => "–",
+            },
+            chosen.map_or("–".to_owned(), |m| format!(
+                "{:.3} + {:.3}",
+                c.pilot_seconds, m.seconds
+            )),
+            cheapest.map_or("none in the grid".to_owned(), run),
+            cheapest.map_or("–".to_owned(), |m| format!("{:.1e}", m.worst)),
+            cheapest.map_or("–".to_owned(), |m| format!("{:.3}", m.seconds)),
+            c.cpu_ratio().map_or("–".to_owned(), |r| format!("{r:.1}")),
+            c.skipped.as_deref().unwrap_or(""),
+        );
+    }
+    text
+}
