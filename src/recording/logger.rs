@@ -482,9 +482,6 @@ impl RopeLogger {
                 .with_positions(tips.iter().copied())
                 .columns_of_unit_batches()?,
         )?;
-        if lane.index.is_some() {
-            return Ok(()); // side by side, the tips' trails would only tangle
-        }
         let trail = &mut lane.trail;
         let trails: Vec<Vec<[f32; 2]>> = tips
             .iter()
@@ -716,15 +713,12 @@ impl FrameSink for RopeLogger {
             return Ok(());
         };
         let method = lane.name;
-        let times = || {
+        self.rec.send_columns(
+            path::EVENTS,
             timelines(
                 [self.time_offset + why.time],
                 [(self.step_offset + why.step) as i64],
-            )
-        };
-        self.rec.send_columns(
-            path::EVENTS,
-            times(),
+            ),
             rerun::TextLog::update_fields()
                 .with_text(format!(
                     "{method} diverged at t = {:.3} ({})",

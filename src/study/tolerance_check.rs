@@ -177,7 +177,7 @@ impl Cell {
     }
 }
 
-/// Runs `method` at N = `segments` and its default step from `scene`, its shadow with it if
+/// Runs `method` at N = `segments` and step `dt` from `scene`, its shadow with it if
 /// `shadowed`, and measures it against `reference`; `None` if it could not start or
 /// diverged.
 fn measure(

@@ -169,20 +169,6 @@ impl Recording {
         self.temporal_values(entity, text, |t: &rerun::components::Text| t.to_string())
     }
 
-    /// The `sim_time`s, in seconds, at which `entity` was cleared.
-    pub fn cleared_at(&self, entity: &str) -> Vec<f64> {
-        let timeline = rerun::TimelineName::from_static_str("sim_time");
-        let recursive = rerun::Clear::descriptor_is_recursive().component;
-        self.chunks
-            .get(entity)
-            .into_iter()
-            .flatten()
-            .filter(|c| c.components().contains_component(recursive))
-            .filter_map(|c| c.timelines().get(&timeline))
-            .flat_map(|column| column.times_raw().iter().map(|&ns| ns as f64 * 1e-9))
-            .collect()
-    }
-
     pub fn has(&self, entity: &str) -> bool {
         self.chunks.contains_key(entity)
     }
