@@ -128,9 +128,19 @@ fn announce(args: &RunArgs, plans: &[Planned]) {
         }
         let basis = if pilots
             .iter()
-            .any(|p| p.method == choice.method && p.model.is_some())
+            .any(|p| p.method == choice.method && p.held_at == Some(choice.segments))
         {
-            "the scene's own error model, from the pilots"
+            "the scene's own error, measured by the pilot at this N"
+        } else if let Some(model) = rope::run::pilot::tighter_model(
+            choice.method,
+            args.tolerance.unwrap_or_default(),
+            pilots,
+        ) {
+            if model == choice.method.descriptor().error_model {
+                "the committed error model, here tighter than the pilots' own (measured at N ≤ 64)"
+            } else {
+                "the scene's own error model, from the pilots"
+            }
         } else {
             "the committed error model, fitted to t = 3 over six scenes by `rope study --estimate-check`"
         };
@@ -205,27 +215,29 @@ fn announce(args: &RunArgs, plans: &[Planned]) {
 /// What the pilots of `--tolerance` measured, a line per method.
 fn pilot_lines(pilots: &[rope::run::pilot::Pilot], duration: f64) -> String {
     let seconds: f64 = pilots.iter().map(|p| p.seconds).sum();
-    let levels: Vec<String> = rope::run::pilot::LEVELS
-        .iter()
-        .map(|n| n.to_string())
-        .collect();
     let mut text = format!(
-        "rope: tolerance pilots: each method at N = {} to t = {}, {seconds:.2} s of CPU; the largest live tip estimate at each N:",
-        levels.join(", "),
+        "rope: tolerance pilots: to t = {}, {seconds:.2} s of CPU; the largest live tip estimate at each N flown:",
         duration.min(rope::run::pilot::WINDOW)
     );
     for p in pilots {
-        let measured: Vec<String> = p.measured.iter().map(|(_, e)| format!("{e:.1e}")).collect();
-        let what = match (&p.diverged, &p.model) {
-            (Some(d), _) => format!("ruled out, a pilot diverged: {d}"),
-            (None, Some(m)) => format!(
-                "{} → error ≈ {:.3} h^{:.2} (×{:.1} safety)",
-                measured.join(", "),
-                m.constant,
-                m.order,
-                m.safety
+        let measured: Vec<String> = p
+            .measured
+            .iter()
+            .map(|(n, e)| format!("{e:.1e} at N = {n}"))
+            .collect();
+        let measured = measured.join(", ");
+        let what = match (&p.diverged, &p.model, p.held_at) {
+            (Some(d), _, _) => format!("ruled out, a pilot diverged: {d}"),
+            (None, _, None) if p.measured.is_empty() => "not flown".to_owned(),
+            (None, _, Some(n)) => format!(
+                "{measured} → holds the tolerance at N = {n} by its own estimate (×{} safety)",
+                rope::run::pilot::SAFETY
             ),
-            (None, None) => format!("{} → no model fitted", measured.join(", ")),
+            (None, Some(m), None) => format!(
+                "{measured} → error ≈ {:.3} h^{:.2} (×{:.1} safety)",
+                m.constant, m.order, m.safety
+            ),
+            (None, None, None) => format!("{measured} → no model fitted"),
         };
         text += &format!("\n  {}: {what}", p.method);
     }
@@ -692,9 +704,10 @@ fn tolerance_check(args: &StudyArgs, size: CheckSize) -> anyhow::Result<ExitCode
     let methods = MethodKind::ALL.len();
     let runs = spec.scenes.len() * (1 + methods * spec.grid.len() + spec.tolerances.len());
     eprintln!(
-        "rope study: {} scenes, each a reference at N = {} (with N/2 and 2N), a grid of up to {} runs and a choice per EPS in {:?}, to t = {}",
+        "rope study: {} scenes, each a reference at N = {} (with N/2 and 2N; N doubled up to {} until it is fine enough), a grid of up to {} runs and a choice per EPS in {:?}, to t = {}",
         spec.scenes.len(),
         spec.reference_segments,
+        spec.reference_segments_max,
         methods * spec.grid.len(),
         spec.tolerances,
         spec.duration

@@ -589,9 +589,9 @@ fn tolerance_flag_prints_its_choice_and_runs_it() {
     ]);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{stderr}");
-    // The method the rule picks (every limit is far off at this tolerance).
+    // The method the rule picks, its pilots flown (every limit is far off at this tolerance).
     let scene = rope::model::Scene::Release { angle_deg: 30.0 };
-    let rule = rope::methods::tolerance::choose(1e-2, 1.0, &scene, |_, _, _| true).unwrap();
+    let (rule, _) = rope::run::pilot::choose(1e-2, &scene, 1.0, 60.0, u64::MAX).unwrap();
     assert!(
         stderr.contains(&format!("tolerance 1e-2: chose the {} method", rule.method)),
         "{stderr}"

@@ -30,6 +30,33 @@ impl ErrorModel {
         (1.0 / h).ceil() as usize
     }
 
+    /// The least-squares fit of log(error) = log C + `order` · log h to `(segments, error)`
+    /// points at the order given (errors ≤ 0 are left out): C the geometric mean of
+    /// error / h^order, the safety its largest ratio to that. `None` without a point.
+    pub fn fit_at_order(
+        points: impl IntoIterator<Item = (usize, f64)>,
+        order: f64,
+    ) -> Option<ErrorModel> {
+        let logs: Vec<f64> = points
+            .into_iter()
+            .filter(|&(_, e)| e > 0.0)
+            .map(|(n, e)| e.ln() - order * (1.0 / n as f64).ln())
+            .collect();
+        if logs.is_empty() {
+            return None;
+        }
+        let log_constant = logs.iter().sum::<f64>() / logs.len() as f64;
+        let safety = logs
+            .iter()
+            .map(|l| (l - log_constant).exp())
+            .fold(1.0, f64::max);
+        Some(ErrorModel {
+            constant: log_constant.exp(),
+            order,
+            safety,
+        })
+    }
+
     /// The least-squares fit of log(error) = log C + p log h to `(segments, error)` points
     /// (errors ≤ 0 are left out). `None` with fewer than two distinct segment counts.
     pub fn fit(points: impl IntoIterator<Item = (usize, f64)>) -> Option<ErrorModel> {
@@ -65,6 +92,19 @@ impl ErrorModel {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_fit_at_a_given_order_bounds_every_point_it_was_fitted_to() {
+        // Errors whose constant grows with N (a whip at coarse N), fitted at first order.
+        let points = [(16, 2.8e-2), (32, 1.6e-2), (64, 9.0e-3)];
+        let model = ErrorModel::fit_at_order(points, 1.0).unwrap();
+        assert_eq!(model.order, 1.0);
+        for (n, e) in points {
+            assert!(model.bound(n) >= e * (1.0 - 1e-12), "N = {n}: {model:?}");
+        }
+        // The finest point is the one above the line: it sets the safety.
+        assert!((model.bound(64) - 9.0e-3).abs() < 1e-12);
+    }
 
     #[test]
     fn fit_recovers_an_exact_power_law() {

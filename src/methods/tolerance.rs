@@ -111,6 +111,16 @@ fn can_start(method: MethodKind, scene: &Scene) -> bool {
         .is_ok()
 }
 
+/// `method` at `segments` and its default step, to `duration`, its error bounded by
+/// `predicted_error` (measured, e.g. by a pilot at that very N).
+pub fn at(method: MethodKind, segments: usize, predicted_error: f64, duration: f64) -> Choice {
+    let model = method.descriptor().error_model;
+    Choice {
+        predicted_error,
+        ..choice(method, &model, segments, duration)
+    }
+}
+
 /// `method` at `segments` (at least [`MIN_SEGMENTS`]) and its default step, to `duration`,
 /// its error predicted by `model`.
 fn choice(method: MethodKind, model: &ErrorModel, segments: usize, duration: f64) -> Choice {

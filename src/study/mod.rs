@@ -326,7 +326,7 @@ pub fn execute_tolerance_check(
     spec: &tolerance_check::CheckSpec,
     out: &Path,
     command: &str,
-    tick: impl Fn(),
+    tick: impl Fn() + Sync,
 ) -> anyhow::Result<String> {
     create_dir(out)?;
     let checked = tolerance_check::check(spec, tick)?;

@@ -29,8 +29,12 @@ pub struct CheckSpec {
     pub scenes: Vec<Scene>,
     pub tolerances: Vec<f64>,
     pub duration: f64,
-    /// The reference: [`MethodKind::REFERENCE`] at N/2, N and 2N, extrapolated.
+    /// The reference: [`MethodKind::REFERENCE`] at N/2, N and 2N, extrapolated, from N = this
+    /// ...
     pub reference_segments: usize,
+    /// ... N doubled while the reference's own error is above [`REFERENCE_MARGIN`] × the
+    /// smallest EPS, up to this N.
+    pub reference_segments_max: usize,
     /// The grid's segment counts (every startable method at each, its default step).
     pub grid: Vec<usize>,
 }
@@ -38,13 +42,15 @@ pub struct CheckSpec {
 impl Default for CheckSpec {
     /// The issue's check: the six scenes of the estimate check, EPS = 1e-2, 1e-3 and 1e-4
     /// (each where the reference allows), to t = 3, against the chain extrapolated from
-    /// N = 400, 800 and 1600, beside a grid up to N = 400.
+    /// N/2, N and 2N with N from 200 up to 1600 (the whips need N = 1600: 3200 rods, two
+    /// minutes a scene), beside a grid up to N = 400.
     fn default() -> Self {
         Self {
             scenes: super::estimate_check::CheckSpec::default().scenes,
             tolerances: vec![1e-2, 1e-3, 1e-4],
             duration: 3.0,
-            reference_segments: 800,
+            reference_segments: 200,
+            reference_segments_max: 1600,
             grid: vec![16, 25, 32, 50, 64, 100, 141, 200, 283, 400],
         }
     }
@@ -65,6 +71,7 @@ impl CheckSpec {
             tolerances: vec![1e-2],
             duration: 3.0,
             reference_segments: 200,
+            reference_segments_max: 200,
             grid: vec![16, 25, 32, 50, 64, 100],
         }
     }
@@ -75,6 +82,8 @@ impl CheckSpec {
 pub struct TipReference {
     coarse: Trajectory,
     fine: Trajectory,
+    /// N: the reference is made of the runs at N/2, N and 2N.
+    pub segments: usize,
     /// The order observed from the three, between 1 (a whip) and 2 (the chain's nominal).
     pub order: f64,
     /// The largest change of the extrapolated tip over the frames when it is made from N and
@@ -84,43 +93,47 @@ pub struct TipReference {
 }
 
 impl TipReference {
-    /// Computes the three runs (in parallel) and reads the order and own error at the frames.
+    /// The reference from the runs at N/2, N and 2N (computed in parallel).
     pub fn compute(scene: &Scene, segments: usize, duration: f64) -> anyhow::Result<Self> {
+        Self::refined(scene, segments, segments, 0.0, duration)
+    }
+
+    /// The reference from N = `segments` (with N/2 and 2N), N then doubled while its own
+    /// error is above `target` and N is below `most`: each doubling one more run, at 2N.
+    pub fn refined(
+        scene: &Scene,
+        segments: usize,
+        most: usize,
+        target: f64,
+        duration: f64,
+    ) -> anyhow::Result<Self> {
         let mut runs = [segments / 2, segments, 2 * segments]
             .into_par_iter()
             .map(|n| Trajectory::compute(scene, n, duration))
             .collect::<anyhow::Result<Vec<_>>>()?;
-        let (Some(fine), Some(coarse), Some(half)) = (runs.pop(), runs.pop(), runs.pop()) else {
-            anyhow::bail!("three reference runs expected");
-        };
-        let frames = frame_times(duration);
-        let largest = |a: &Trajectory, b: &Trajectory| {
-            frames
-                .iter()
-                .map(|&t| (a.at(t) - b.at(t)).norm())
-                .fold(0.0, f64::max)
-        };
-        let (step_coarse, step_fine) = (largest(&coarse, &half), largest(&fine, &coarse));
-        let order = if step_fine > 0.0 {
-            (step_coarse / step_fine).log2().clamp(1.0, 2.0)
-        } else {
-            2.0
-        };
-        let extrapolated = |f: Point, c: Point| f + (f - c) / (2f64.powf(order) - 1.0);
-        let own_error = frames
-            .iter()
-            .map(|&t| {
-                let finer = extrapolated(fine.at(t), coarse.at(t));
-                let coarser = extrapolated(coarse.at(t), half.at(t));
-                (finer - coarser).norm()
-            })
-            .fold(0.0, f64::max);
-        Ok(Self {
-            coarse,
-            fine,
-            order,
-            own_error,
-        })
+        let mut n = segments;
+        loop {
+            let (fine, coarse, half) = match runs.as_slice() {
+                [.., half, coarse, fine] => (fine, coarse, half),
+                _ => anyhow::bail!("three reference runs expected"),
+            };
+            let (order, own_error) = order_and_own_error(half, coarse, fine, duration);
+            if own_error <= target || 2 * n > most {
+                let (Some(fine), Some(coarse)) = (runs.pop(), runs.pop()) else {
+                    anyhow::bail!("three reference runs expected");
+                };
+                return Ok(Self {
+                    coarse,
+                    fine,
+                    segments: n,
+                    order,
+                    own_error,
+                });
+            }
+            n *= 2;
+            runs.remove(0);
+            runs.push(Trajectory::compute(scene, 2 * n, duration)?);
+        }
     }
 
     /// The reference tip at time `t`.
@@ -128,6 +141,39 @@ impl TipReference {
         let (fine, coarse) = (self.fine.at(t), self.coarse.at(t));
         fine + (fine - coarse) / (2f64.powf(self.order) - 1.0)
     }
+}
+
+/// The order that the runs at N/2, N and 2N show at the frames, and the largest change of the
+/// extrapolated tip when it is made from N and 2N rather than from N/2 and N.
+fn order_and_own_error(
+    half: &Trajectory,
+    coarse: &Trajectory,
+    fine: &Trajectory,
+    duration: f64,
+) -> (f64, f64) {
+    let frames = frame_times(duration);
+    let largest = |a: &Trajectory, b: &Trajectory| {
+        frames
+            .iter()
+            .map(|&t| (a.at(t) - b.at(t)).norm())
+            .fold(0.0, f64::max)
+    };
+    let (step_coarse, step_fine) = (largest(coarse, half), largest(fine, coarse));
+    let order = if step_fine > 0.0 {
+        (step_coarse / step_fine).log2().clamp(1.0, 2.0)
+    } else {
+        2.0
+    };
+    let extrapolated = |f: Point, c: Point| f + (f - c) / (2f64.powf(order) - 1.0);
+    let own_error = frames
+        .iter()
+        .map(|&t| {
+            let finer = extrapolated(fine.at(t), coarse.at(t));
+            let coarser = extrapolated(coarse.at(t), half.at(t));
+            (finer - coarser).norm()
+        })
+        .fold(0.0, f64::max);
+    (order, own_error)
 }
 
 /// The frame times of a run of `duration` at [`LOG_RATE`].
@@ -223,6 +269,8 @@ fn measure(
 #[derive(Clone, Copy, Debug)]
 pub struct ReferenceNote {
     pub scene: Scene,
+    /// [`TipReference::segments`].
+    pub segments: usize,
     /// The order of the reference method's convergence in N there.
     pub order: f64,
     /// [`TipReference::own_error`].
@@ -238,27 +286,46 @@ pub struct Checked {
     pub references: Vec<ReferenceNote>,
 }
 
-/// The whole check: a reference per scene (its three runs in parallel), then each scene's grid
+/// The whole check: a reference per scene (the scenes' in parallel), then each scene's grid
 /// and each tolerance's choice one run at a time, so that their wall seconds are one
 /// thread's. `tick` is called once per reference and once per run.
-pub fn check(spec: &CheckSpec, tick: impl Fn()) -> anyhow::Result<Checked> {
+pub fn check(spec: &CheckSpec, tick: impl Fn() + Sync) -> anyhow::Result<Checked> {
     let mut cells = Vec::new();
-    let mut references = Vec::new();
-    for scene in &spec.scenes {
-        let reference = TipReference::compute(scene, spec.reference_segments, spec.duration)?;
-        tick();
-        references.push(ReferenceNote {
+    let smallest = spec
+        .tolerances
+        .iter()
+        .copied()
+        .fold(f64::INFINITY, f64::min);
+    // The references first, the scenes' in parallel: no CPU is measured while they run.
+    let scene_references = spec
+        .scenes
+        .par_iter()
+        .map(|scene| {
+            let reference = TipReference::refined(
+                scene,
+                spec.reference_segments,
+                spec.reference_segments_max,
+                REFERENCE_MARGIN * smallest,
+                spec.duration,
+            );
+            tick();
+            reference
+        })
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    let references = spec
+        .scenes
+        .iter()
+        .zip(&scene_references)
+        .map(|(scene, r)| ReferenceNote {
             scene: *scene,
-            order: reference.order,
-            own_error: reference.own_error,
-        });
+            segments: r.segments,
+            order: r.order,
+            own_error: r.own_error,
+        })
+        .collect();
+    for (scene, reference) in spec.scenes.iter().zip(&scene_references) {
         // Each method up the grid until it holds the smallest EPS: a finer run could only
         // cost more.
-        let smallest = spec
-            .tolerances
-            .iter()
-            .copied()
-            .fold(f64::INFINITY, f64::min);
         let mut grid: Vec<Measured> = Vec::new();
         for method in tolerance::startable(scene) {
             for &n in &spec.grid {
@@ -269,7 +336,7 @@ pub fn check(spec: &CheckSpec, tick: impl Fn()) -> anyhow::Result<Checked> {
                     method.default_dt(n),
                     spec.duration,
                     false,
-                    &reference,
+                    reference,
                 );
                 tick();
                 grid.extend(run);
@@ -306,7 +373,7 @@ pub fn check(spec: &CheckSpec, tick: impl Fn()) -> anyhow::Result<Checked> {
                     cell.pilot_seconds = started.elapsed().as_secs_f64();
                     cell.from_pilots = !pilots.is_empty();
                     let (m, n, dt) = (choice.method, choice.segments, choice.dt);
-                    cell.chosen = measure(m, scene, n, dt, spec.duration, true, &reference);
+                    cell.chosen = measure(m, scene, n, dt, spec.duration, true, reference);
                 }
                 Err(err) => cell.skipped = Some(err.to_string()),
             }
@@ -323,21 +390,25 @@ pub fn markdown(spec: &CheckSpec, checked: &Checked, command: &str) -> String {
         "# `--tolerance` against the truth\n\n`{command}`\n\n\
          For each scene and EPS, the run `rope run --tolerance EPS --duration {}` makes (its \
          pilots, then the chosen method, N and k with its shadow at N/2) is compared at every \
-         frame ({LOG_RATE} per time unit) with the tip of a reference: the {} method at N = {}, \
-         {} and {}, extrapolated in N at the order the three show. Its CPU (one thread, pilots \
-         included) is set beside the cheapest run of the grid (every method that can start, at \
-         N = {:?} and its default step, without a shadow) whose largest error also holds EPS. \
-         A tolerance is checked only where the reference's own error is at most \
-         {REFERENCE_MARGIN} × EPS.\n\n## References\n\n| scene | observed order | own error |\n|---|---|---|\n",
+         frame ({LOG_RATE} per time unit) with the tip of a reference: the {} method at N/2, N \
+         and 2N, extrapolated in N at the order the three show, N doubled from {} (up to {}) \
+         until the reference's own error is at most {REFERENCE_MARGIN} × the smallest EPS. Its \
+         CPU (one thread, pilots included) is set beside the cheapest run of the grid (every \
+         method that can start, at N = {:?} and its default step, without a shadow) whose \
+         largest error also holds EPS. A tolerance is checked only where the reference's own \
+         error is at most {REFERENCE_MARGIN} × EPS.\n\n## References\n\n\
+         | scene | N (runs at N/2, N, 2N) | observed order | own error |\n|---|---|---|---|\n",
         spec.duration,
         MethodKind::REFERENCE,
-        spec.reference_segments / 2,
         spec.reference_segments,
-        2 * spec.reference_segments,
+        spec.reference_segments_max,
         spec.grid
     );
     for r in &checked.references {
-        text += &format!("| {} | {:.2} | {:.1e} |\n", r.scene, r.order, r.own_error);
+        text += &format!(
+            "| {} | {} | {:.2} | {:.1e} |\n",
+            r.scene, r.segments, r.order, r.own_error
+        );
     }
     text += "\n## Choices\n\n| scene | EPS | chosen (from) | true worst error | held | CPU s (pilots + run) | grid's cheapest holding EPS | its worst error | its CPU s | ratio | notes |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
     let run = |m: &Measured| format!("{} N = {}, k = {:.1e}", m.method, m.segments, m.dt);
