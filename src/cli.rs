@@ -7,7 +7,7 @@ use crate::methods::tolerance::Choice;
 use crate::model::Scene;
 use crate::recording::destinations::OutputArgs;
 use crate::run::cost::{self, Cost, Limits};
-use crate::run::pilot::{self, Pilot};
+use crate::run::pilot::{self, Pilots};
 use crate::run::{RunConfig, RunPlan};
 use crate::study::Spec;
 use std::path::PathBuf;
@@ -466,9 +466,11 @@ pub struct RunArgs {
     pub repeat: Option<Passes>,
 
     /// Choose method, segments and time step for a tip-position error of at most EPS (string
-    /// lengths) at every frame, from the error models `rope study --estimate-check` fitted
-    /// over six scenes; prints the choice, its predicted error and cost. The run then watches its live error estimate,
-    /// says when it passes EPS, and reports `tolerance_met` in the summary.
+    /// lengths) at every frame: pilot runs of the scene at N = 16, 32, 64 measure its own error
+    /// (as far as measuring costs less than it can save), beside the error models `rope study
+    /// --estimate-check` fitted over six scenes; prints what the pilots measured, the choice,
+    /// its predicted error and cost. The run then watches its live error estimate, says when
+    /// it passes EPS, and reports `tolerance_met` in the summary.
     #[arg(long, value_name = "EPS", allow_negative_numbers = true, allow_hyphen_values = true, conflicts_with_all = ["method", "segments", "dt"])]
     pub tolerance: Option<f64>,
 
@@ -552,8 +554,8 @@ pub struct Planned {
     /// The runs of the other methods of a comparison (`--method A,B,…`), side by side with
     /// `plan` on the same frame times; empty for a run of one method.
     pub others: Vec<RunPlan>,
-    /// What the pilot runs of `--tolerance` measured, if it flew them.
-    pub pilots: Vec<Pilot>,
+    /// What the pilot runs of `--tolerance` measured, and what its choice rests on.
+    pub pilots: Option<Pilots>,
 }
 
 impl Planned {
@@ -646,7 +648,7 @@ impl RunArgs {
             tolerance: self.tolerance,
         };
         let (config, choice, pilots) = match self.tolerance {
-            None => (asked, None, Vec::new()),
+            None => (asked, None, None),
             Some(eps) => {
                 let (choice, pilots) = self.choose(eps, &scene)?;
                 let chosen = RunConfig {
@@ -655,7 +657,7 @@ impl RunArgs {
                     dt: Some(choice.dt),
                     ..asked
                 };
-                (chosen, Some(choice), pilots)
+                (chosen, Some(choice), Some(pilots))
             }
         };
         let lane = |method: MethodKind| {
@@ -689,7 +691,7 @@ impl RunArgs {
 
     /// `--tolerance EPS` for `scene`: the run layer's choice ([`pilot::choose`]) for this
     /// run's duration, log rate and memory limit.
-    fn choose(&self, eps: f64, scene: &Scene) -> Result<(Choice, Vec<Pilot>), ConfigError> {
+    fn choose(&self, eps: f64, scene: &Scene) -> Result<(Choice, Pilots), ConfigError> {
         pilot::choose(
             eps,
             scene,

@@ -123,27 +123,25 @@ fn announce(args: &RunArgs, plans: &[Planned]) {
         } else {
             String::new()
         };
-        if !pilots.is_empty() {
+        use rope::run::pilot::Basis;
+        let basis = match pilots.as_ref().map(|p| p.basis) {
+            Some(Basis::Held) => "the scene's own error, measured by the pilot at this N",
+            Some(Basis::OwnModel) => "the scene's own error model, from the pilots",
+            Some(Basis::CommittedTighter) => {
+                "the committed error model, here tighter than the pilots' own (measured at N ≤ 64)"
+            }
+            Some(Basis::Committed) | None => {
+                "the committed error model, fitted to t = 3 over six scenes by `rope study --estimate-check`, no cheaper run found by the pilots that were worth their cost"
+            }
+        };
+        let flew = |p: &&rope::run::pilot::Pilots| {
+            p.flown
+                .iter()
+                .any(|f| !f.measured.is_empty() || f.diverged.is_some())
+        };
+        if let Some(pilots) = pilots.as_ref().filter(flew) {
             eprintln!("{}", pilot_lines(pilots, plan.duration));
         }
-        let basis = if pilots
-            .iter()
-            .any(|p| p.method == choice.method && p.held_at == Some(choice.segments))
-        {
-            "the scene's own error, measured by the pilot at this N"
-        } else if let Some(model) = rope::run::pilot::tighter_model(
-            choice.method,
-            args.tolerance.unwrap_or_default(),
-            pilots,
-        ) {
-            if model == choice.method.descriptor().error_model {
-                "the committed error model, here tighter than the pilots' own (measured at N ≤ 64)"
-            } else {
-                "the scene's own error model, from the pilots"
-            }
-        } else {
-            "the committed error model, fitted to t = 3 over six scenes by `rope study --estimate-check`"
-        };
         eprintln!(
             "rope: tolerance {:e}{scene}: chose the {} method, N = {}, k = {:e}; predicted tip error at most {:.1e}, predicted cost {:.2e} CPU s with its frames and the estimate's shadow ({basis}; the live estimate will say if it holds)",
             args.tolerance.unwrap_or_default(),
@@ -213,13 +211,13 @@ fn announce(args: &RunArgs, plans: &[Planned]) {
 }
 
 /// What the pilots of `--tolerance` measured, a line per method.
-fn pilot_lines(pilots: &[rope::run::pilot::Pilot], duration: f64) -> String {
-    let seconds: f64 = pilots.iter().map(|p| p.seconds).sum();
+fn pilot_lines(pilots: &rope::run::pilot::Pilots, duration: f64) -> String {
+    let seconds = pilots.seconds();
     let mut text = format!(
         "rope: tolerance pilots: to t = {}, {seconds:.2} s of CPU; the largest live tip estimate at each N flown:",
         duration.min(rope::run::pilot::WINDOW)
     );
-    for p in pilots {
+    for p in &pilots.flown {
         let measured: Vec<String> = p
             .measured
             .iter()
@@ -233,10 +231,17 @@ fn pilot_lines(pilots: &[rope::run::pilot::Pilot], duration: f64) -> String {
                 "{measured} → holds the tolerance at N = {n} by its own estimate (×{} safety)",
                 rope::run::pilot::SAFETY
             ),
-            (None, Some(m), None) => format!(
-                "{measured} → error ≈ {:.3} h^{:.2} (×{:.1} safety)",
-                m.constant, m.order, m.safety
-            ),
+            (None, Some(m), None) => {
+                // Three significant digits, however small the constant.
+                let constant = match m.constant >= 0.01 {
+                    true => format!("{:.3}", m.constant),
+                    false => format!("{:.2e}", m.constant),
+                };
+                format!(
+                    "{measured} → error ≈ {constant} h^{:.2} (×{:.1} safety)",
+                    m.order, m.safety
+                )
+            }
             (None, None, None) => format!("{measured} → no model fitted"),
         };
         text += &format!("\n  {}: {what}", p.method);

@@ -130,21 +130,26 @@ fn a_method_whose_pilot_diverges_is_ruled_out() {
 
 #[test]
 fn a_pilot_that_already_holds_is_the_run_chosen_and_the_climb_stops_there() {
-    // Mode 1 is smooth: a pilot holds 1e-4 by its own estimate at a low level, and no level
-    // above it is flown, by any method.
+    // Mode 1 is smooth: a pilot holds 1e-3 by its own estimate at the first level, and no
+    // level above it is flown, by any method.
     let mode = Scene::Mode {
         number: 1,
         amplitude: 0.05,
     };
-    let (choice, pilots) = pilot::choose(1e-4, &mode, 3.0, 60.0, u64::MAX).unwrap();
-    let held: Vec<_> = pilots.iter().filter(|p| p.held_at.is_some()).collect();
+    let (choice, pilots) = pilot::choose(1e-3, &mode, 3.0, 60.0, u64::MAX).unwrap();
+    assert_eq!(pilots.basis, pilot::Basis::Held);
+    let held: Vec<_> = pilots
+        .flown
+        .iter()
+        .filter(|p| p.held_at.is_some())
+        .collect();
     assert_eq!(held.len(), 1, "{pilots:?}");
     assert_eq!(
         (held[0].method, held[0].held_at),
         (choice.method, Some(choice.segments))
     );
-    assert!(choice.predicted_error <= 1e-4, "{choice:?}");
-    for p in &pilots {
+    assert!(choice.predicted_error <= 1e-3, "{choice:?}");
+    for p in &pilots.flown {
         assert!(
             p.measured.iter().all(|&(n, _)| n <= choice.segments),
             "{p:?}"
@@ -178,12 +183,55 @@ fn a_pilots_bound_is_its_estimate_rescaled_to_the_order_it_observes() {
 
 #[test]
 fn pilots_stop_where_measuring_would_cost_more_than_the_committed_choice() {
-    // From 30° at 1e-2 the committed models choose a run of a few hundredths of a second: the
-    // pilots may not spend more than that, none of them holds 1e-2 at N = 16, so the
-    // committed choice is made.
+    // From 30° at 1e-2 the committed models choose a run of a few hundredths of a second. No
+    // pilot holds 1e-2 at N = 16 and their first-order model asks for more segments than the
+    // committed one, the tighter: the next level would cost more than its run, so the
+    // committed choice is made after the first level.
     let thirty = Scene::Release { angle_deg: 30.0 };
     let (choice, pilots) = pilot::choose(1e-2, &thirty, 3.0, 60.0, u64::MAX).unwrap();
     let committed = tolerance::choose(1e-2, 3.0, &thirty, |_, _, _| true).unwrap();
     assert_eq!(choice, committed);
-    assert!(pilots.iter().all(|p| p.held_at.is_none()), "{pilots:?}");
+    assert_eq!(pilots.basis, pilot::Basis::CommittedTighter);
+    for p in &pilots.flown {
+        assert!(p.held_at.is_none(), "{p:?}");
+        assert!(
+            p.measured.iter().all(|&(n, _)| n == pilot::LEVELS[0]),
+            "{p:?}"
+        );
+    }
+}
+
+#[test]
+fn a_scene_its_pilots_show_cheaper_is_run_from_their_model_and_holds() {
+    // From 60° the first level's estimates, taken at first order with the safety factor, ask
+    // for fewer segments at 1e-2 than the committed models (fitted to the horizontal
+    // release's whip): the pilots' own model is the choice, and the climb stops there.
+    let sixty = Scene::Release { angle_deg: 60.0 };
+    let (choice, pilots) = pilot::choose(1e-2, &sixty, 3.0, 60.0, u64::MAX).unwrap();
+    let committed = tolerance::choose(1e-2, 3.0, &sixty, |_, _, _| true).unwrap();
+    assert_eq!(pilots.basis, pilot::Basis::OwnModel, "{pilots:?}");
+    assert!(
+        choice.segments < committed.segments,
+        "{choice:?} {committed:?}"
+    );
+    // Held at every frame against the chain at N = 200, 400, 800 extrapolated: its distance
+    // from the reference plus the reference's own error bounds its distance from the truth.
+    let reference = TipReference::compute(&sixty, 400, 3.0).unwrap();
+    assert!(
+        reference.own_error <= 2e-3,
+        "own error {:.1e}",
+        reference.own_error
+    );
+    let (s, _) = tolerance_run("pilot-60", &["--angle", "60", "--tolerance", "1e-2"]);
+    assert_eq!(s["segments"].as_u64(), Some(choice.segments as u64));
+    let worst = worst_tip_error(&s["tip_samples"], |t| reference.at(t)) + reference.own_error;
+    eprintln!(
+        "60°, 1e-2: N = {}, worst tip error at most {worst:.2e}",
+        choice.segments
+    );
+    assert!(
+        worst <= 1e-2,
+        "worst tip error {worst:.2e} at N = {}",
+        choice.segments
+    );
 }

@@ -4,9 +4,11 @@
 //!
 //! The pilots climb a ladder: every method at the first level (cheapest first), then every
 //! method at the next. A pilot whose own estimate already holds EPS (with the safety factor)
-//! is the run to make, and the climb stops there: a scene that needs few segments pays for
-//! little more than one cheap run twice. Past the last level, each method's error model is
-//! fitted to its three levels and the cheapest N that model allows is chosen.
+//! is the run to make, and the climb stops there. After each pilot, each method's own error
+//! model is fitted to the levels it has flown, and the cheapest run those models (or the
+//! committed ones) allow is the best known so far; the climb also stops where the next pilot
+//! would take the pilots' cost past that run's: a scene that needs few segments pays for
+//! little more than one cheap run twice.
 
 use super::cost::{self, Cost};
 use super::simulate::{self, Options};
@@ -124,62 +126,153 @@ pub fn fly(method: MethodKind, scene: &Scene, duration: f64) -> Pilot {
     pilot
 }
 
-/// How the pilots' ladder ended.
-enum Climb {
-    /// A pilot held EPS: the run chosen.
-    Held(Choice),
-    /// Every level flown: the models are fitted.
-    Top,
-    /// The next pilot would have taken the pilots past the budget.
-    OverBudget,
+/// Where a `--tolerance` choice's predicted error comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Basis {
+    /// A pilot at the chosen method and N held EPS by its own estimate ([`Pilot::bound`]).
+    Held,
+    /// The scene's own error model, fitted to the pilots' estimates ([`Pilot::model`]).
+    OwnModel,
+    /// The committed model, asking fewer segments than the pilots' own ([`tighter_model`]).
+    CommittedTighter,
+    /// The committed model alone: no pilot was worth its cost, or none measured anything.
+    Committed,
+}
+
+impl Basis {
+    /// A few words for a table.
+    pub fn label(self) -> &'static str {
+        match self {
+            Self::Held => "a pilot held",
+            Self::OwnModel => "pilots' model",
+            Self::CommittedTighter | Self::Committed => "committed model",
+        }
+    }
+}
+
+/// What the pilots flew for a choice, and what the choice rests on.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Pilots {
+    /// One per method that can start from the scene, cheapest first (some perhaps not flown).
+    pub flown: Vec<Pilot>,
+    pub basis: Basis,
+}
+
+impl Pilots {
+    /// CPU seconds the pilots took (one thread).
+    pub fn seconds(&self) -> f64 {
+        self.flown.iter().map(|p| p.seconds).sum()
+    }
+}
+
+/// The best choice known so far during the climb, and what it would cost.
+#[derive(Clone, Copy)]
+struct Best {
+    choice: Choice,
+    seconds: f64,
+    basis: Basis,
 }
 
 /// The ladder: each level for every method not ruled out, cheapest first, until a pilot holds
 /// `eps` by its own [`Pilot::bound`] (and its run `fits`), or the next pilot would take the
-/// pilots' predicted CPU past `budget` (the committed models' choice's predicted cost:
-/// measuring must cost less than what it can save). Past the top level every method's model
-/// is fitted.
+/// pilots' predicted CPU past what the best choice known so far would cost (measuring must
+/// cost less than it can save). That best is at first `committed`, then after each pilot the
+/// cheapest that the pilots' own models allow, where cheaper: a scene whose pilots show it
+/// cheap stops measuring early. `seconds` is a run's predicted CPU, shadow included.
 fn climb(
     eps: f64,
     scene: &Scene,
     duration: f64,
-    budget: f64,
-    fits: impl Fn(MethodKind, usize, f64) -> bool,
-) -> (Vec<Pilot>, Climb) {
+    committed: Option<Choice>,
+    seconds: impl Fn(&Choice) -> f64,
+    fits: impl Fn(MethodKind, usize, f64) -> bool + Copy,
+) -> (Vec<Pilot>, Option<Best>) {
     let mut pilots: Vec<Pilot> = tolerance::startable(scene).map(Pilot::new).collect();
     pilots.sort_by(|a, b| {
         let cost = |p: &Pilot| level_seconds(p.method, LEVELS[0], duration);
         cost(a).total_cmp(&cost(b))
     });
+    let by_committed = committed.map(|choice| Best {
+        choice,
+        seconds: seconds(&choice),
+        basis: Basis::Committed,
+    });
+    let mut best = by_committed;
     // Predicted, not measured, so that the same command makes the same choice on any machine
     // and under any load.
     let mut spent = 0.0;
     for segments in LEVELS {
-        for pilot in pilots.iter_mut() {
+        for i in 0..pilots.len() {
+            let pilot = &mut pilots[i];
             if pilot.diverged.is_some() {
                 continue;
             }
             spent += level_seconds(pilot.method, segments, duration);
-            if spent > budget {
-                return (pilots, Climb::OverBudget);
+            if best.is_some_and(|b| spent > b.seconds) {
+                return (pilots, best);
             }
             pilot.fly_at(scene, segments, duration);
-            let Some((flown, bound)) = pilot.bound() else {
-                continue;
-            };
-            let dt = pilot.method.default_dt(flown);
-            let held = flown == segments && bound <= eps && pilot.diverged.is_none();
-            if held && fits(pilot.method, flown, dt) {
-                pilot.held_at = Some(flown);
-                let choice = tolerance::at(pilot.method, flown, bound, duration);
-                return (pilots, Climb::Held(choice));
+            if let Some((flown, bound)) = pilot.bound() {
+                let dt = pilot.method.default_dt(flown);
+                let held = flown == segments && bound <= eps && pilot.diverged.is_none();
+                if held && fits(pilot.method, flown, dt) {
+                    pilot.held_at = Some(flown);
+                    let choice = tolerance::at(pilot.method, flown, bound, duration);
+                    let seconds = seconds(&choice);
+                    return (
+                        pilots,
+                        Some(Best {
+                            choice,
+                            seconds,
+                            basis: Basis::Held,
+                        }),
+                    );
+                }
             }
+            pilot.model = match pilot.diverged {
+                None => own_model(pilot.method, &pilot.measured),
+                Some(_) => None,
+            };
+            // Every model as it now stands: a method's older choice goes with its older model.
+            let modelled = cheapest_modelled(eps, scene, duration, &pilots, &seconds, fits);
+            best = match (modelled, by_committed) {
+                (Some(m), Some(c)) if c.seconds < m.seconds => Some(c),
+                (Some(m), _) => Some(m),
+                (None, c) => c,
+            };
         }
     }
-    for pilot in pilots.iter_mut().filter(|p| p.diverged.is_none()) {
-        pilot.model = own_model(pilot.method, &pilot.measured);
-    }
-    (pilots, Climb::Top)
+    (pilots, best)
+}
+
+/// The cheapest run, by `seconds`, that the pilots' models allow (each method's
+/// [`tighter_model`]) and that `fits`.
+fn cheapest_modelled(
+    eps: f64,
+    scene: &Scene,
+    duration: f64,
+    pilots: &[Pilot],
+    seconds: impl Fn(&Choice) -> f64,
+    fits: impl Fn(MethodKind, usize, f64) -> bool + Copy,
+) -> Option<Best> {
+    pilots
+        .iter()
+        .filter_map(|pilot| {
+            let method = pilot.method;
+            let model = tighter_model(method, eps, pilots)?;
+            let only = |m: MethodKind| (m == method).then_some(model);
+            let choice = tolerance::choose_with(eps, duration, scene, only, LEVELS[0], fits)?;
+            let basis = match model == method.descriptor().error_model {
+                true => Basis::CommittedTighter,
+                false => Basis::OwnModel,
+            };
+            Some(Best {
+                choice,
+                seconds: seconds(&choice),
+                basis,
+            })
+        })
+        .min_by(|a, b| a.seconds.total_cmp(&b.seconds))
 }
 
 /// The scene's error model from the pilots' largest estimates at each N. The live estimate is
@@ -187,19 +280,18 @@ fn climb(
 /// lower order (a whip's error is first order), the estimates are rescaled to it, and the
 /// model refitted.
 fn own_model(method: MethodKind, measured: &[(usize, f64)]) -> Option<ErrorModel> {
-    let first = ErrorModel::fit(measured.iter().copied())?;
     // An order below 1 (a scene still far from its asymptote at these N) would ask for absurd
-    // N: the first order every method has is taken instead.
-    let observed = first.order.max(1.0);
+    // N, and one level shows none: the first order every method has is taken instead.
+    let observed = ErrorModel::fit(measured.iter().copied()).map_or(1.0, |m| m.order.max(1.0));
     let nominal = f64::from(method.descriptor().order_in_h);
     let rescale = (2f64.powf(nominal) - 1.0) / (2f64.powf(observed.min(nominal)) - 1.0);
     let rescaled = measured.iter().map(|&(n, e)| (n, e * rescale));
-    let mut model = ErrorModel::fit(rescaled.clone())?;
-    if model.order < 1.0 {
+    let model = match ErrorModel::fit(rescaled.clone()) {
+        Some(model) if model.order >= 1.0 => model,
         // Refitted at first order: raising the order of the fitted line alone would predict
         // less than the pilots measured (a whip's error constant still grows at these N).
-        model = ErrorModel::fit_at_order(rescaled, 1.0)?;
-    }
+        _ => ErrorModel::fit_at_order(rescaled, 1.0)?,
+    };
     Some(ErrorModel {
         safety: model.safety * SAFETY,
         ..model
@@ -233,7 +325,7 @@ pub fn choose(
     duration: f64,
     log_rate: f64,
     memory: u64,
-) -> Result<(Choice, Vec<Pilot>), ConfigError> {
+) -> Result<(Choice, Pilots), ConfigError> {
     scene.validate()?;
     if !(eps.is_finite() && eps > 0.0) {
         return Err(ConfigError::Tolerance(eps));
@@ -251,24 +343,11 @@ pub fn choose(
         cost.bytes <= memory && cost.seconds <= tolerance::MAX_SECONDS
     };
     let committed = tolerance::choose(eps, duration, scene, fits);
-    // The pilots may spend no more than the committed models' choice would cost.
-    let budget = committed.map_or(f64::INFINITY, |c| {
-        cost_of(c.method, c.segments, c.dt).seconds
-    });
-    let (mut pilots, climbed) = climb(eps, scene, duration, budget, fits);
-    match (climbed, committed) {
-        (Climb::Held(choice), _) => return Ok((choice, pilots)),
-        (Climb::OverBudget, Some(choice)) => {
-            pilots.retain(|p| !p.measured.is_empty() || p.diverged.is_some());
-            return Ok((choice, pilots));
-        }
-        _ => {}
-    }
-    let model = |m: MethodKind| tighter_model(m, eps, &pilots);
-    if let Some(choice) =
-        tolerance::choose_with(eps, duration, scene, model, LEVELS[0], fits).or(committed)
-    {
-        return Ok((choice, pilots));
+    let seconds = |c: &Choice| cost_of(c.method, c.segments, c.dt).seconds;
+    let (flown, best) = climb(eps, scene, duration, committed, seconds, fits);
+    if let Some(best) = best {
+        let basis = best.basis;
+        return Ok((best.choice, Pilots { flown, basis }));
     }
     let best =
         tolerance::tightest(duration, scene, fits).ok_or(ConfigError::ToleranceNoMethod(eps))?;

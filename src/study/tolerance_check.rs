@@ -203,10 +203,10 @@ pub struct Cell {
     pub skipped: Option<String>,
     /// The chosen run, measured; its `seconds` are the run's with its shadow.
     pub chosen: Option<Measured>,
-    /// Seconds the pilots took (0 where the committed models chose).
+    /// Seconds the choice took: the pilots, and the rule.
     pub pilot_seconds: f64,
-    /// Where the choice came from: the pilots or the committed models.
-    pub from_pilots: bool,
+    /// What the choice rests on: a pilot that held, the pilots' model or the committed one.
+    pub basis: Option<pilot::Basis>,
     pub cheapest: Option<Measured>,
 }
 
@@ -352,7 +352,7 @@ pub fn check(spec: &CheckSpec, tick: impl Fn() + Sync) -> anyhow::Result<Checked
                 skipped: None,
                 chosen: None,
                 pilot_seconds: 0.0,
-                from_pilots: false,
+                basis: None,
                 cheapest: grid
                     .iter()
                     .filter(|r| r.worst <= eps)
@@ -369,9 +369,9 @@ pub fn check(spec: &CheckSpec, tick: impl Fn() + Sync) -> anyhow::Result<Checked
             }
             let started = Instant::now();
             match pilot::choose(eps, scene, spec.duration, LOG_RATE, u64::MAX) {
-                Ok((choice, pilots)) => {
+                Ok((choice, flown)) => {
                     cell.pilot_seconds = started.elapsed().as_secs_f64();
-                    cell.from_pilots = !pilots.is_empty();
+                    cell.basis = Some(flown.basis);
                     let (m, n, dt) = (choice.method, choice.segments, choice.dt);
                     cell.chosen = measure(m, scene, n, dt, spec.duration, true, reference);
                 }
@@ -422,7 +422,7 @@ pub fn markdown(spec: &CheckSpec, checked: &Checked, command: &str) -> String {
             chosen.map_or("–".to_owned(), |m| format!(
                 "{} ({})",
                 run(m),
-                if c.from_pilots { "pilots" } else { "committed" }
+                c.basis.map_or("–", pilot::Basis::label)
             )),
             chosen.map_or("–".to_owned(), |m| format!("{:.1e}", m.worst)),
             match c.held() {
