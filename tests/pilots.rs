@@ -105,16 +105,66 @@ fn a_release_from_30_degrees_holds_1e_2_against_a_reference_at_every_frame() {
     thirty_degrees_holds("1e-2", &thirty_degree_reference(200));
 }
 
-/// Three minutes of CPU for its reference (N = 800, 1600, 3200):
+/// The release from 30° against the chain at N = 800, 1600, 3200: three minutes of CPU,
+/// computed once for the tests that need it.
+fn fine_thirty_degree_reference() -> &'static TipReference {
+    static FINE: std::sync::OnceLock<TipReference> = std::sync::OnceLock::new();
+    FINE.get_or_init(|| thirty_degree_reference(1600))
+}
+
 /// `cargo test --release --test pilots -- --ignored --nocapture`.
 #[test]
 #[ignore]
 fn a_release_from_30_degrees_holds_1e_3_against_a_fine_reference_at_every_frame() {
-    let fine = thirty_degree_reference(1600);
+    let fine = fine_thirty_degree_reference();
     // Converged to a tenth of the tolerance at every frame, whips included: a proof, not an
     // estimate.
     assert!(fine.own_error <= 1e-4, "own error {:.1e}", fine.own_error);
-    thirty_degrees_holds("1e-3", &fine);
+    thirty_degrees_holds("1e-3", fine);
+}
+
+/// Why `--tolerance 1e-3` from 30° cannot find the grid's cheapest run (rattle at N = 283,
+/// within a fifth of EPS): the tip's true error constant falls at large N, and pilots flown
+/// higher would not see it. The largest of |x_N − x_{N/2}| over the frames falls at order
+/// below 1 from N = 64 to 256, while the true worst error falls at order above 1.3.
+/// `cargo test --release --test pilots -- --ignored --nocapture` prints the table.
+#[test]
+#[ignore]
+fn higher_pilots_from_30_degrees_do_not_see_the_error_constant_fall() {
+    let fine = fine_thirty_degree_reference();
+    let thirty = Scene::Release { angle_deg: 30.0 };
+    let options = rope::run::simulate::Options {
+        duration: 3.0,
+        log_rate: 60.0,
+    };
+    let levels = [64, 128, 256];
+    let measured: Vec<(f64, f64)> = levels
+        .iter()
+        .map(|&n| {
+            let method = MethodKind::Rattle;
+            let dt = method.default_dt(n);
+            let mut worst: f64 = 0.0;
+            let run = rope::run::simulate::run_shadowed(method, &thirty, n, dt, &options, |f| {
+                worst = worst.max((f.tip() - fine.at(f.time)).norm());
+            });
+            let estimate = run.max_tip.unwrap();
+            eprintln!(
+                "rattle N = {n}: largest estimate {estimate:.2e}, true worst {worst:.2e} (constant {:.3}), ratio {:.2}",
+                worst * n as f64,
+                worst / estimate
+            );
+            (estimate, worst)
+        })
+        .collect();
+    let order = |coarse: f64, fine: f64| (coarse / fine).log2();
+    let (first, last) = (measured[0], measured[2]);
+    let estimated = order(first.0, last.0) / 2.0;
+    let true_order = order(first.1, last.1) / 2.0;
+    eprintln!(
+        "N = 64 to 256: estimates fall at order {estimated:.2}, the truth at {true_order:.2}"
+    );
+    assert!(estimated < 1.0, "estimates' order {estimated:.2}");
+    assert!(true_order > 1.3, "true order {true_order:.2}");
 }
 
 #[test]
