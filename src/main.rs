@@ -134,11 +134,7 @@ fn announce(args: &RunArgs, plans: &[Planned]) {
                 "the committed error model, fitted to t = 3 over six scenes by `rope study --estimate-check`, no cheaper run found by the pilots that were worth their cost"
             }
         };
-        let flew = |p: &&rope::run::pilot::Pilots| {
-            p.flown
-                .iter()
-                .any(|f| !f.measured.is_empty() || f.diverged.is_some())
-        };
+        let flew = |p: &&rope::run::pilot::Pilots| p.flown.iter().any(|f| f.flew());
         if let Some(pilots) = pilots.as_ref().filter(flew) {
             eprintln!("{}", pilot_lines(pilots, plan.duration));
         }
@@ -226,7 +222,7 @@ fn pilot_lines(pilots: &rope::run::pilot::Pilots, duration: f64) -> String {
         let measured = measured.join(", ");
         let what = match (&p.diverged, &p.model, p.held_at) {
             (Some(d), _, _) => format!("ruled out, a pilot diverged: {d}"),
-            (None, _, None) if p.measured.is_empty() => "not flown".to_owned(),
+            (None, _, None) if !p.flew() => "not flown".to_owned(),
             (None, _, Some(n)) => format!(
                 "{measured} → holds the tolerance at N = {n} by its own estimate (×{} safety)",
                 rope::run::pilot::SAFETY

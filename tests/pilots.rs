@@ -171,7 +171,9 @@ fn higher_pilots_from_30_degrees_do_not_see_the_error_constant_fall() {
 fn a_method_whose_pilot_diverges_is_ruled_out() {
     // From 30° the seed scheme's shadow at N = 8 blows up at once: no model, not chosen.
     let thirty = Scene::Release { angle_deg: 30.0 };
-    let seed = pilot::fly(MethodKind::Seed, &thirty, 3.0);
+    let (_, pilots) = pilot::choose(1e-3, &thirty, 3.0, 60.0, u64::MAX).unwrap();
+    let seed = pilots.flown.iter().find(|p| p.method == MethodKind::Seed);
+    let seed = seed.expect("the seed scheme can start from 30°: its pilot flies");
     assert!(seed.diverged.is_some() && seed.model.is_none(), "{seed:?}");
     let (s, said) = tolerance_run("pilot-ruled", &["--angle", "30", "--tolerance", "1e-3"]);
     assert!(said.contains("seed: ruled out, a pilot diverged"), "{said}");

@@ -54,9 +54,13 @@ pub fn choose_with(
 ) -> Option<Choice> {
     startable(scene)
         .filter_map(|method| {
-            let model = model_of(method)?;
-            let segments = model.segments_for(tolerance).max(fewest);
-            Some(choice(method, &model, segments, duration))
+            Some(by_model(
+                method,
+                &model_of(method)?,
+                tolerance,
+                fewest,
+                duration,
+            ))
         })
         .filter(|c| fits(c.method, c.segments, c.dt))
         .min_by(|a, b| a.predicted_seconds.total_cmp(&b.predicted_seconds))
@@ -109,6 +113,19 @@ fn can_start(method: MethodKind, scene: &Scene) -> bool {
     method
         .build(scene, segments, d.default_dt(segments))
         .is_ok()
+}
+
+/// `method` at the fewest segments (at least `fewest`) whose bound by `model` is within
+/// `tolerance`, and its default step, to `duration`.
+pub fn by_model(
+    method: MethodKind,
+    model: &ErrorModel,
+    tolerance: f64,
+    fewest: usize,
+    duration: f64,
+) -> Choice {
+    let segments = model.segments_for(tolerance).max(fewest);
+    choice(method, model, segments, duration)
 }
 
 /// `method` at `segments` and its default step, to `duration`, its error bounded by

@@ -41,9 +41,9 @@ pub struct Pilot {
     pub method: MethodKind,
     /// The largest live tip estimate over the frames, at each level flown.
     pub measured: Vec<(usize, f64)>,
-    /// The scene's own error model for this method, fitted to `measured`, its safety factor
-    /// times [`SAFETY`]; `None` if the pilots could not fit one (or the climb stopped before
-    /// the last level).
+    /// The scene's own error model for this method, fitted to `measured` after each level
+    /// flown, its safety factor times [`SAFETY`]; `None` before its first pilot, or if one
+    /// diverged.
     pub model: Option<ErrorModel>,
     /// The level at which this method's own pilot held EPS ([`Pilot::bound`]), if it did: the
     /// run chosen.
@@ -55,6 +55,11 @@ pub struct Pilot {
 }
 
 impl Pilot {
+    /// Whether this method's pilots flew: measured a level, or diverged.
+    pub fn flew(&self) -> bool {
+        !self.measured.is_empty() || self.diverged.is_some()
+    }
+
     fn new(method: MethodKind) -> Self {
         Self {
             method,
@@ -108,22 +113,6 @@ impl Pilot {
 fn level_seconds(method: MethodKind, segments: usize, duration: f64) -> f64 {
     let dt = method.default_dt(segments);
     Cost::of_estimated_run(method, segments, dt, duration.min(WINDOW), RATE, true).seconds
-}
-
-/// Runs `method`'s pilots in `scene` to `duration` (at most [`WINDOW`]) at each of
-/// [`LEVELS`], at the method's default step for each, and fits its model.
-pub fn fly(method: MethodKind, scene: &Scene, duration: f64) -> Pilot {
-    let mut pilot = Pilot::new(method);
-    for segments in LEVELS {
-        pilot.fly_at(scene, segments, duration);
-        if pilot.diverged.is_some() {
-            break;
-        }
-    }
-    if pilot.diverged.is_none() {
-        pilot.model = own_model(method, &pilot.measured);
-    }
-    pilot
 }
 
 /// Where a `--tolerance` choice's predicted error comes from.
@@ -234,7 +223,7 @@ fn climb(
                 Some(_) => None,
             };
             // Every model as it now stands: a method's older choice goes with its older model.
-            let modelled = cheapest_modelled(eps, scene, duration, &pilots, &seconds, fits);
+            let modelled = cheapest_modelled(eps, duration, &pilots, &seconds, fits);
             best = match (modelled, by_committed) {
                 (Some(m), Some(c)) if c.seconds < m.seconds => Some(c),
                 (Some(m), _) => Some(m),
@@ -249,7 +238,6 @@ fn climb(
 /// [`tighter_model`]) and that `fits`.
 fn cheapest_modelled(
     eps: f64,
-    scene: &Scene,
     duration: f64,
     pilots: &[Pilot],
     seconds: impl Fn(&Choice) -> f64,
@@ -260,8 +248,10 @@ fn cheapest_modelled(
         .filter_map(|pilot| {
             let method = pilot.method;
             let model = tighter_model(method, eps, pilots)?;
-            let only = |m: MethodKind| (m == method).then_some(model);
-            let choice = tolerance::choose_with(eps, duration, scene, only, LEVELS[0], fits)?;
+            let choice = tolerance::by_model(method, &model, eps, LEVELS[0], duration);
+            if !fits(method, choice.segments, choice.dt) {
+                return None;
+            }
             let basis = match model == method.descriptor().error_model {
                 true => Basis::CommittedTighter,
                 false => Basis::OwnModel,
