@@ -139,11 +139,11 @@ fn announce(args: &RunArgs, plans: &[Planned]) {
             eprintln!("{}", pilot_lines(pilots, plan.duration));
         }
         eprintln!(
-            "rope: tolerance {:e}{scene}: chose the {} method, N = {}, k = {:e}; predicted tip error at most {:.1e}, predicted cost {:.2e} CPU s with its frames and the estimate's shadow ({basis}; the live estimate will say if it holds)",
+            "rope: tolerance {:e}{scene}: chose the {} method, N = {}, k = {}; predicted tip error at most {:.1e}, predicted cost {:.2e} CPU s with its frames and the estimate's shadow ({basis}; the live estimate will say if it holds)",
             args.tolerance.unwrap_or_default(),
             choice.method,
             choice.segments,
-            choice.dt,
+            step_text(choice.dt),
             choice.predicted_error,
             plan.cost.seconds
         );
@@ -206,6 +206,19 @@ fn announce(args: &RunArgs, plans: &[Planned]) {
     }
 }
 
+/// A step as the user reads it: in four significant digits, and as 1/m where it is the
+/// reciprocal of a whole number that those digits do not give exactly (`6.41e-4 = 1/1560`).
+fn step_text(dt: f64) -> String {
+    let short = rope::run::config::short_step(dt);
+    let whole = (1.0 / dt).round();
+    match short.parse::<f64>() {
+        Ok(v) if v != dt && (1.0 / whole - dt).abs() <= 1e-12 * dt => {
+            format!("{short} = 1/{whole}")
+        }
+        _ => short,
+    }
+}
+
 /// What the pilots of `--tolerance` measured, a line per method.
 fn pilot_lines(pilots: &rope::run::pilot::Pilots, duration: f64) -> String {
     let seconds = pilots.seconds();
@@ -222,6 +235,11 @@ fn pilot_lines(pilots: &rope::run::pilot::Pilots, duration: f64) -> String {
         let measured = measured.join(", ");
         let what = match (&p.diverged, &p.model, p.held_at) {
             (Some(d), _, _) => format!("ruled out, a pilot diverged: {d}"),
+            (None, _, None) if p.measured_by.is_some() && !p.flew() => format!(
+                "not flown: its {} are the {}'s, whose pilots measure their error",
+                p.method.descriptor().discretization,
+                p.measured_by.map_or("", MethodKind::name)
+            ),
             (None, _, None) if !p.flew() => "not flown".to_owned(),
             (None, _, Some(n)) => format!(
                 "{measured} → holds the tolerance at N = {n} by its own estimate (×{} safety)",
@@ -694,7 +712,7 @@ fn estimate_check(args: &StudyArgs) -> anyhow::Result<ExitCode> {
 /// `rope study --tolerance-check`: what `--tolerance` chooses, against the truth and the
 /// cheapest run of a grid.
 fn tolerance_check(args: &StudyArgs, size: CheckSize) -> anyhow::Result<ExitCode> {
-    use rope::study::tolerance_check::CheckSpec;
+    use rope::study::tolerance_check::{CheckSpec, grid_steps};
     if let Err(err) = writable_dir("out", &args.out) {
         return Ok(bad_input(&err));
     }
@@ -702,14 +720,18 @@ fn tolerance_check(args: &StudyArgs, size: CheckSize) -> anyhow::Result<ExitCode
         CheckSize::Full => CheckSpec::default(),
         CheckSize::Quick => CheckSpec::quick(),
     };
-    let methods = MethodKind::ALL.len();
-    let runs = spec.scenes.len() * (1 + methods * spec.grid.len() + spec.tolerances.len());
+    let grid_runs: usize = spec
+        .grid
+        .iter()
+        .flat_map(|&n| MethodKind::ALL.map(|m| grid_steps(m, n).len()))
+        .sum();
+    let runs = spec.scenes.len() * (1 + grid_runs + spec.tolerances.len());
     eprintln!(
         "rope study: {} scenes, each a reference at N = {} (with N/2 and 2N; N doubled up to {} until it is fine enough), a grid of up to {} runs and a choice per EPS in {:?}, to t = {}",
         spec.scenes.len(),
         spec.reference_segments,
         spec.reference_segments_max,
-        methods * spec.grid.len(),
+        grid_runs,
         spec.tolerances,
         spec.duration
     );

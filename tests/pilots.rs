@@ -217,6 +217,7 @@ fn a_pilots_bound_is_its_estimate_rescaled_to_the_order_it_observes() {
         model: None,
         held_at: None,
         diverged: None,
+        measured_by: None,
         seconds: 0.0,
     };
     // One level: no order observed, the lowest taken (a whip's first), so the difference
@@ -235,54 +236,85 @@ fn a_pilots_bound_is_its_estimate_rescaled_to_the_order_it_observes() {
 
 #[test]
 fn pilots_stop_where_measuring_would_cost_more_than_the_committed_choice() {
-    // From 30° at 1e-2 the committed models choose a run of a few hundredths of a second. No
-    // pilot holds 1e-2 at N = 16 and their first-order model asks for more segments than the
-    // committed one, the tighter: the next level would cost more than its run, so the
-    // committed choice is made after the first level.
+    // From 30° at 1e-2 the committed models choose a run of a hundredth of a second. No pilot
+    // holds 1e-2, and their first-order model asks for more segments than the committed one,
+    // the tighter: the top level would cost more than that run, so it is never flown and the
+    // committed choice is made.
     let thirty = Scene::Release { angle_deg: 30.0 };
     let (choice, pilots) = pilot::choose(1e-2, &thirty, 3.0, 60.0, u64::MAX).unwrap();
     let committed = tolerance::choose(1e-2, 3.0, &thirty, |_, _, _| true).unwrap();
     assert_eq!(choice, committed);
     assert_eq!(pilots.basis, pilot::Basis::CommittedTighter);
+    let top = pilot::LEVELS[pilot::LEVELS.len() - 1];
     for p in &pilots.flown {
         assert!(p.held_at.is_none(), "{p:?}");
-        assert!(
-            p.measured.iter().all(|&(n, _)| n == pilot::LEVELS[0]),
-            "{p:?}"
-        );
+        assert!(p.measured.iter().all(|&(n, _)| n < top), "{p:?}");
     }
 }
 
 #[test]
+fn methods_of_one_discretization_fly_one_pilot_the_cheapest() {
+    // The chain, rattle and midpoint are the same rods: at their tolerance steps their tip
+    // errors are the rods' own, so only the cheapest of them, the chain, flies; the others
+    // say whose pilots stand for theirs.
+    let thirty = Scene::Release { angle_deg: 30.0 };
+    let (_, pilots) = pilot::choose(1e-3, &thirty, 3.0, 60.0, u64::MAX).unwrap();
+    let of = |m: MethodKind| pilots.flown.iter().find(|p| p.method == m).unwrap();
+    assert!(of(MethodKind::Chain).flew() && of(MethodKind::Chain).measured_by.is_none());
+    for m in [MethodKind::Rattle, MethodKind::Midpoint] {
+        assert_eq!(of(m).measured_by, Some(MethodKind::Chain), "{:?}", of(m));
+        assert!(!of(m).flew(), "{:?}", of(m));
+    }
+    // The seed scheme's finite differences are a discretization of their own: it flies.
+    assert!(of(MethodKind::Seed).flew() && of(MethodKind::Seed).measured_by.is_none());
+    let (_, said) = tolerance_run("pilot-rods", &["--angle", "30", "--tolerance", "1e-2"]);
+    assert!(
+        said.contains("rattle: not flown: its rods are the chain's"),
+        "{said}"
+    );
+}
+
+#[test]
 fn a_scene_its_pilots_show_cheaper_is_run_from_their_model_and_holds() {
-    // From 60° the first level's estimates, taken at first order with the safety factor, ask
-    // for fewer segments at 1e-2 than the committed models (fitted to the horizontal
-    // release's whip): the pilots' own model is the choice, and the climb stops there.
-    let sixty = Scene::Release { angle_deg: 60.0 };
-    let (choice, pilots) = pilot::choose(1e-2, &sixty, 3.0, 60.0, u64::MAX).unwrap();
-    let committed = tolerance::choose(1e-2, 3.0, &sixty, |_, _, _| true).unwrap();
+    // In mode 2 the pilots' estimates fall faster than first order: their own model asks for
+    // tens of segments at 1e-3 where the committed models (fitted to the horizontal release's
+    // whip) ask for hundreds.
+    let mode = Scene::Mode {
+        number: 2,
+        amplitude: 0.05,
+    };
+    let (choice, pilots) = pilot::choose(1e-3, &mode, 3.0, 60.0, u64::MAX).unwrap();
+    let committed = tolerance::choose(1e-3, 3.0, &mode, |_, _, _| true).unwrap();
     assert_eq!(pilots.basis, pilot::Basis::OwnModel, "{pilots:?}");
     assert!(
-        choice.segments < committed.segments,
+        choice.segments * 4 < committed.segments,
         "{choice:?} {committed:?}"
     );
-    // Held at every frame against the chain at N = 200, 400, 800 extrapolated: its distance
+    // Held at every frame against the chain at N = 100, 200, 400 extrapolated: its distance
     // from the reference plus the reference's own error bounds its distance from the truth.
-    let reference = TipReference::compute(&sixty, 400, 3.0).unwrap();
+    let reference = TipReference::compute(&mode, 200, 3.0).unwrap();
     assert!(
-        reference.own_error <= 2e-3,
+        reference.own_error <= 1e-5,
         "own error {:.1e}",
         reference.own_error
     );
-    let (s, _) = tolerance_run("pilot-60", &["--angle", "60", "--tolerance", "1e-2"]);
+    let flags = [
+        "--scene",
+        "mode",
+        "--mode-number",
+        "2",
+        "--tolerance",
+        "1e-3",
+    ];
+    let (s, _) = tolerance_run("pilot-mode-2", &flags);
     assert_eq!(s["segments"].as_u64(), Some(choice.segments as u64));
     let worst = worst_tip_error(&s["tip_samples"], |t| reference.at(t)) + reference.own_error;
     eprintln!(
-        "60°, 1e-2: N = {}, worst tip error at most {worst:.2e}",
+        "mode 2, 1e-3: N = {}, worst tip error at most {worst:.2e}",
         choice.segments
     );
     assert!(
-        worst <= 1e-2,
+        worst <= 1e-3,
         "worst tip error {worst:.2e} at N = {}",
         choice.segments
     );

@@ -10,6 +10,10 @@ use crate::model::{Energy, Scene};
 /// the report): what the stability limits are written for.
 pub const TENSION_MAX: f64 = 1.5;
 
+/// What [`Descriptor::tolerance_dt`] divides into whole steps: half the interval of the default
+/// 60 frames per time unit, so that each frame falls on an even step.
+pub const TOLERANCE_STEP_GRID: f64 = 1.0 / 120.0;
+
 /// The state of the string at one instant, for output: everything per segment.
 #[derive(Clone, Debug, Default)]
 pub struct Observation {
@@ -211,8 +215,19 @@ pub struct Descriptor {
     /// Whether a time step past the limit is refused (unless `--allow-unstable`): true for a
     /// method that blows up there, false for one that stays stable and only costs more.
     pub refuses_unstable_step: bool,
+    /// The step `--tolerance` runs at, as a fraction of the stability limit, where it is not
+    /// the default step: one at which the method's worst tip error to t = 3 is still that of
+    /// its default step (its spatial error), within 2.5 % in every scene and N probed
+    /// (`scripts/tolerance-step.sh`). `None`: the default step. The default is chosen for the
+    /// energy over long runs; a tip tolerance over a finite run need not pay for it.
+    pub tolerance_step_fraction: Option<f64>,
     /// CPU cost of one step per segment, in ns (`cargo bench --bench step`, N = 1000).
     pub ns_per_segment_step: f64,
+    /// What the method discretizes the string into. Methods of one discretization share its
+    /// spatial error: at their tolerance steps their worst tip errors agree to within the
+    /// probe's scatter (`scripts/tolerance-step.sh`), so `--tolerance`'s pilots fly only the
+    /// cheapest of them.
+    pub discretization: &'static str,
     /// Memory of the method's state per segment, in bytes (what its vectors hold).
     pub bytes_per_segment: usize,
     /// The order of accuracy in h the method is built to have (1 for a first-order scheme):
@@ -261,6 +276,21 @@ impl Descriptor {
         round_down_nicely(self.default_step_fraction * self.stability_limit(segments))
     }
 
+    /// The step `--tolerance` runs at `segments` segments:
+    /// [`Descriptor::tolerance_step_fraction`] of the limit, brought down to 1/(120 m) for a
+    /// whole m (frames at 60, 30, 20, … per time unit then fall on even steps, which the live
+    /// estimate's shadow shares, and a duration of whole frames is whole steps), and never
+    /// below the default step; the default step where the method has no fraction of its own.
+    pub fn tolerance_dt(&self, segments: usize) -> f64 {
+        let default = self.default_dt(segments);
+        let Some(fraction) = self.tolerance_step_fraction else {
+            return default;
+        };
+        let wanted = fraction * self.stability_limit(segments);
+        let steps = (TOLERANCE_STEP_GRID / wanted - 1e-9).ceil().max(1.0);
+        (TOLERANCE_STEP_GRID / steps).max(default)
+    }
+
     /// min(1, k / k_default): what a method's substep bounds are multiplied by, so that below
     /// the default step a finer step refines every substep (the whip's too) in proportion,
     /// and at the default step and above the bounds are as tuned.
@@ -271,5 +301,46 @@ impl Descriptor {
     /// The Courant number C = k N sqrt(F_max) that a step `dt` at `segments` amounts to.
     pub fn courant_of(segments: f64, dt: f64) -> f64 {
         dt * segments * TENSION_MAX.sqrt()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::methods::MethodKind;
+
+    #[test]
+    fn a_tolerance_step_is_a_whole_fraction_of_the_frame_grid_within_its_fraction_of_the_limit() {
+        for method in MethodKind::ALL {
+            let d = method.descriptor();
+            for n in [2, 4, 16, 50, 100, 283, 491, 1000, 10_000] {
+                if n < d.min_segments {
+                    continue;
+                }
+                let (k, default) = (d.tolerance_dt(n), d.default_dt(n));
+                assert!(
+                    k >= default,
+                    "{method} N = {n}: {k} below the default {default}"
+                );
+                let Some(fraction) = d.tolerance_step_fraction else {
+                    assert_eq!(k, default, "{method} N = {n}");
+                    continue;
+                };
+                if k > default {
+                    assert!(
+                        k <= fraction * d.stability_limit(n) * (1.0 + 1e-12),
+                        "{method} N = {n}"
+                    );
+                    let m = TOLERANCE_STEP_GRID / k;
+                    assert!((m - m.round()).abs() < 1e-9, "{method} N = {n}: k = {k}");
+                    // The largest such step: one whole part fewer would pass the fraction.
+                    let larger = TOLERANCE_STEP_GRID / (m.round() - 1.0);
+                    assert!(m.round() == 1.0 || larger > fraction * d.stability_limit(n));
+                }
+            }
+        }
+        // The chain at N = 491: the limit 6.65e-4, the step 1/1560.
+        let chain = MethodKind::Chain.descriptor();
+        assert!((chain.tolerance_dt(491) - 1.0 / 1560.0).abs() < 1e-15);
     }
 }

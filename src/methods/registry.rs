@@ -102,6 +102,11 @@ impl MethodKind {
         self.descriptor().default_dt(segments)
     }
 
+    /// The step `--tolerance` runs this method at with `segments` segments.
+    pub fn tolerance_dt(self, segments: usize) -> f64 {
+        self.descriptor().tolerance_dt(segments)
+    }
+
     /// Builds the method for `scene`, validating everything it needs.
     pub fn build(
         self,

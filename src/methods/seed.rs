@@ -54,7 +54,10 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     // nothing.
     default_step_fraction: 0.5,
     refuses_unstable_step: true,
+    // The scheme blows up past its limit: its tolerance runs at the default step.
+    tolerance_step_fraction: None,
     ns_per_segment_step: 10.2,
+    discretization: "finite differences",
     // φ at three times, the tension, and the sweep's two scratch vectors.
     bytes_per_segment: 6 * 8,
     order_in_h: 1,

@@ -29,8 +29,8 @@ pub struct Choice {
 /// The cheapest method, N and k whose tip error is predicted to stay within `tolerance`,
 /// among the methods that can start from `scene` and whose run `fits` (the caller's limits on
 /// time and memory, asked as `fits(method, N, k)`). Each method's N comes from its error
-/// model's bound (prediction × measured safety factor), its k is the method's default for
-/// that N.
+/// model's bound (prediction × measured safety factor), its k is the method's tolerance step
+/// for that N ([`Descriptor::tolerance_dt`](super::Descriptor::tolerance_dt)).
 pub fn choose(
     tolerance: f64,
     duration: f64,
@@ -75,7 +75,7 @@ pub fn tightest(
 ) -> Option<Choice> {
     startable(scene)
         .filter_map(|method| {
-            let fits_at = |n: usize| fits(method, n, method.default_dt(n));
+            let fits_at = |n: usize| fits(method, n, method.tolerance_dt(n));
             if !fits_at(MIN_SEGMENTS) {
                 return None;
             }
@@ -116,7 +116,7 @@ fn can_start(method: MethodKind, scene: &Scene) -> bool {
 }
 
 /// `method` at the fewest segments (at least `fewest`) whose bound by `model` is within
-/// `tolerance`, and its default step, to `duration`.
+/// `tolerance`, and its tolerance step, to `duration`.
 pub fn by_model(
     method: MethodKind,
     model: &ErrorModel,
@@ -128,7 +128,7 @@ pub fn by_model(
     choice(method, model, segments, duration)
 }
 
-/// `method` at `segments` and its default step, to `duration`, its error bounded by
+/// `method` at `segments` and its tolerance step, to `duration`, its error bounded by
 /// `predicted_error` (measured, e.g. by a pilot at that very N).
 pub fn at(method: MethodKind, segments: usize, predicted_error: f64, duration: f64) -> Choice {
     let model = method.descriptor().error_model;
@@ -138,12 +138,12 @@ pub fn at(method: MethodKind, segments: usize, predicted_error: f64, duration: f
     }
 }
 
-/// `method` at `segments` (at least [`MIN_SEGMENTS`]) and its default step, to `duration`,
+/// `method` at `segments` (at least [`MIN_SEGMENTS`]) and its tolerance step, to `duration`,
 /// its error predicted by `model`.
 fn choice(method: MethodKind, model: &ErrorModel, segments: usize, duration: f64) -> Choice {
     let d = method.descriptor();
     let segments = segments.max(MIN_SEGMENTS);
-    let dt = d.default_dt(segments);
+    let dt = d.tolerance_dt(segments);
     let steps = (duration / dt).round().max(1.0);
     Choice {
         method,

@@ -3,8 +3,10 @@
 //! rather than the worst of the six scenes the committed error models were fitted to.
 //!
 //! The pilots climb a ladder: every method at the first level (cheapest first), then every
-//! method at the next. A pilot whose own estimate already holds EPS (with the safety factor)
-//! is the run to make, and the climb stops there. After each pilot, each method's own error
+//! method at the next; of the methods that share a discretization (the chain of rods), only
+//! the cheapest flies, since the others' error at their tolerance steps is the same. A pilot
+//! whose own estimate already holds EPS (with the safety factor) is the run to make, and the
+//! climb stops there. After each pilot, each method's own error
 //! model is fitted to the levels it has flown, and the cheapest run those models (or the
 //! committed ones) allow is the best known so far; the climb also stops where the next pilot
 //! would take the pilots' cost past that run's: a scene that needs few segments pays for
@@ -50,6 +52,10 @@ pub struct Pilot {
     pub held_at: Option<usize>,
     /// Why a pilot of this method diverged, if one did: the method is ruled out.
     pub diverged: Option<Diverged>,
+    /// The cheaper method of the same discretization whose pilots stand for this one's, if
+    /// there is one: this one is not flown (it would measure the same spatial error), and is
+    /// chosen, if at all, by its committed model.
+    pub measured_by: Option<MethodKind>,
     /// CPU seconds the pilots took (one thread).
     pub seconds: f64,
 }
@@ -67,18 +73,19 @@ impl Pilot {
             model: None,
             held_at: None,
             diverged: None,
+            measured_by: None,
             seconds: 0.0,
         }
     }
 
-    /// Flies `segments` (at the method's default step, to `duration`, at most [`WINDOW`]).
+    /// Flies `segments` (at the method's tolerance step, to `duration`, at most [`WINDOW`]).
     fn fly_at(&mut self, scene: &Scene, segments: usize, duration: f64) {
         let started = Instant::now();
         let options = Options {
             duration: duration.min(WINDOW),
             log_rate: RATE,
         };
-        let dt = self.method.default_dt(segments);
+        let dt = self.method.tolerance_dt(segments);
         let run = simulate::run_shadowed(self.method, scene, segments, dt, &options, |_| {});
         if run.refused.is_none() {
             if let Some(why) = run.diverged.or(run.lost) {
@@ -111,7 +118,7 @@ impl Pilot {
 
 /// The CPU seconds `method`'s pilot at `segments` is predicted to take.
 fn level_seconds(method: MethodKind, segments: usize, duration: f64) -> f64 {
-    let dt = method.default_dt(segments);
+    let dt = method.tolerance_dt(segments);
     Cost::of_estimated_run(method, segments, dt, duration.min(WINDOW), RATE, true).seconds
 }
 
@@ -181,6 +188,13 @@ fn climb(
         let cost = |p: &Pilot| level_seconds(p.method, LEVELS[0], duration);
         cost(a).total_cmp(&cost(b))
     });
+    for i in 1..pilots.len() {
+        let discretization = pilots[i].method.descriptor().discretization;
+        pilots[i].measured_by = pilots[..i]
+            .iter()
+            .find(|p| p.method.descriptor().discretization == discretization)
+            .map(|p| p.method);
+    }
     let by_committed = committed.map(|choice| Best {
         choice,
         seconds: seconds(&choice),
@@ -193,7 +207,7 @@ fn climb(
     for segments in LEVELS {
         for i in 0..pilots.len() {
             let pilot = &mut pilots[i];
-            if pilot.diverged.is_some() {
+            if pilot.diverged.is_some() || pilot.measured_by.is_some() {
                 continue;
             }
             spent += level_seconds(pilot.method, segments, duration);
@@ -202,7 +216,7 @@ fn climb(
             }
             pilot.fly_at(scene, segments, duration);
             if let Some((flown, bound)) = pilot.bound() {
-                let dt = pilot.method.default_dt(flown);
+                let dt = pilot.method.tolerance_dt(flown);
                 let held = flown == segments && bound <= eps && pilot.diverged.is_none();
                 if held && fits(pilot.method, flown, dt) {
                     pilot.held_at = Some(flown);
