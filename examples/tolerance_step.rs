@@ -1,35 +1,18 @@
-//! How the worst tip error to t = 3 depends on the time step at fixed N: each method that can
-//! start, from each of five scenes, at N = 16, 32, 64 and 100, at its default step and at
-//! 0.2, 0.5, 1 and 2 times its stability limit, against the chain extrapolated from N = 200,
-//! 400 and 800. What each method's `tolerance_step_fraction` is read from: the largest
-//! fraction whose worst error stays within 2 % of the default step's everywhere.
-//! `scripts/tolerance-step.sh` runs it (about 3 minutes on 2 cores).
+//! How the worst tip error to t = 3 depends on the time step at fixed N: each rods method
+//! (chain, rattle, midpoint), from each of five scenes, at N = 16, 32, 64 and 100, at its
+//! default step and at 0.2, 0.5, 1 and 2 times its stability limit, against the chain
+//! extrapolated from N = 200, 400 and 800. What each method's `tolerance_step_fraction` is
+//! read from: a fraction whose worst error stays within 2.5 % of the default step's
+//! everywhere. `scripts/tolerance-step.sh` runs it (about 3 minutes on 2 cores).
 
 use rope::methods::{MethodKind, tolerance};
 use rope::model::Scene;
-use rope::run::simulate::{self, Options};
-use rope::study::tolerance_check::TipReference;
-use std::ops::ControlFlow;
+use rope::study::tolerance_check::{TipReference, measure};
 
-/// The worst distance of the tip from the reference's over the frames (60 per time unit).
+/// The worst distance of the tip from the reference's over the frames (NaN if the run could
+/// not start or diverged).
 fn worst(method: MethodKind, scene: &Scene, n: usize, dt: f64, reference: &TipReference) -> f64 {
-    let Ok(mut run) = method.build(scene, n, dt) else {
-        return f64::NAN;
-    };
-    let options = Options {
-        duration: 3.0,
-        log_rate: 60.0,
-    };
-    let mut worst: f64 = 0.0;
-    let outcome = simulate::run(run.as_mut(), &options, None, |f| {
-        worst = worst.max((f.tip() - reference.at(f.time)).norm());
-        ControlFlow::Continue(())
-    });
-    if outcome.diverged.is_some() {
-        f64::NAN
-    } else {
-        worst
-    }
+    measure(method, scene, n, dt, 3.0, false, reference).map_or(f64::NAN, |m| m.worst)
 }
 
 fn main() -> anyhow::Result<()> {

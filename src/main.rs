@@ -235,7 +235,7 @@ fn pilot_lines(pilots: &rope::run::pilot::Pilots, duration: f64) -> String {
         let measured = measured.join(", ");
         let what = match (&p.diverged, &p.model, p.held_at) {
             (Some(d), _, _) => format!("ruled out, a pilot diverged: {d}"),
-            (None, _, None) if p.measured_by.is_some() && !p.flew() => format!(
+            (None, _, None) if p.measured_by.is_some() => format!(
                 "not flown: its {} are the {}'s, whose pilots measure their error",
                 p.method.descriptor().discretization,
                 p.measured_by.map_or("", MethodKind::name)

@@ -110,6 +110,14 @@ pub fn round_down_nicely(x: f64) -> f64 {
     nice * decade
 }
 
+/// The largest step at most `dt` that divides `interval` into a whole number of steps (one
+/// step of `interval` where `dt` is longer): what puts frames, or a shadow's shared steps,
+/// exactly on steps.
+pub fn whole_division(interval: f64, dt: f64) -> f64 {
+    let steps = (interval / dt - 1e-9).ceil().max(1.0);
+    interval / steps
+}
+
 /// Checks what every method needs of a time step.
 pub(crate) fn validate_dt(dt: f64) -> Result<(), ConfigError> {
     if dt.is_finite() && dt > 0.0 {
@@ -287,8 +295,7 @@ impl Descriptor {
             return default;
         };
         let wanted = fraction * self.stability_limit(segments);
-        let steps = (TOLERANCE_STEP_GRID / wanted - 1e-9).ceil().max(1.0);
-        (TOLERANCE_STEP_GRID / steps).max(default)
+        whole_division(TOLERANCE_STEP_GRID, wanted).max(default)
     }
 
     /// min(1, k / k_default): what a method's substep bounds are multiplied by, so that below

@@ -32,6 +32,6 @@ pub mod tridiagonal;
 
 pub use method::{
     BlowUp, Descriptor, Method, Observation, StepStatistics, TENSION_MAX, round_down_nicely,
-    stability_hint,
+    stability_hint, whole_division,
 };
 pub use registry::{MethodKind, REPORT, ReportSetting};

@@ -6,11 +6,10 @@
 //! method at the next; of the methods that share a discretization (the chain of rods), only
 //! the cheapest flies, since the others' error at their tolerance steps is the same. A pilot
 //! whose own estimate already holds EPS (with the safety factor) is the run to make, and the
-//! climb stops there. After each pilot, each method's own error
-//! model is fitted to the levels it has flown, and the cheapest run those models (or the
-//! committed ones) allow is the best known so far; the climb also stops where the next pilot
-//! would take the pilots' cost past that run's: a scene that needs few segments pays for
-//! little more than one cheap run twice.
+//! climb stops there. After each pilot, each method's own error model is fitted to the levels
+//! it has flown, and the cheapest run those models (or the committed ones) allow is the best
+//! known so far; the climb also stops where the next pilot would take the pilots' cost past
+//! that run's: a scene that needs few segments pays for little more than one cheap run twice.
 
 use super::cost::{self, Cost};
 use super::simulate::{self, Options};

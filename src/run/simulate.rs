@@ -5,7 +5,9 @@
 use super::estimate::{ErrorEstimate, STRIDE, Shadow};
 pub use super::trust::{ENERGY_BLOWUP, REFERENCE_STEP, TENSION_BLOWUP, reference_energy};
 use crate::error::Diverged;
-use crate::methods::{Method, MethodKind, Observation, StepStatistics, stability_hint};
+use crate::methods::{
+    Method, MethodKind, Observation, StepStatistics, stability_hint, whole_division,
+};
 use crate::model::Scene;
 use crate::model::geometry::{self, Energy, Point};
 use nalgebra::Vector2;
@@ -89,9 +91,7 @@ pub struct Lane {
 /// numbers of [`STRIDE`] steps: methods at such steps share every frame time exactly (and
 /// each its shadow's), so that their strings can be compared frame by frame.
 pub fn step_on_frame_grid(dt: f64, log_rate: f64) -> f64 {
-    let frame = 1.0 / log_rate;
-    let strides = (frame / (dt * STRIDE as f64) - 1e-9).ceil().max(1.0);
-    frame / (strides * STRIDE as f64)
+    whole_division(1.0 / (log_rate * STRIDE as f64), dt)
 }
 
 impl Frame {

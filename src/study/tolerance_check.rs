@@ -238,7 +238,7 @@ impl Cell {
 /// Runs `method` at N = `segments` and step `dt` from `scene`, its shadow with it if
 /// `shadowed`, and measures it against `reference`; `None` if it could not start or
 /// diverged.
-fn measure(
+pub fn measure(
     method: MethodKind,
     scene: &Scene,
     segments: usize,
@@ -403,8 +403,9 @@ pub fn markdown(spec: &CheckSpec, checked: &Checked, command: &str) -> String {
          until the reference's own error is at most {REFERENCE_MARGIN} × the smallest EPS. Its \
          CPU (one thread, pilots included) is set beside the cheapest run of the grid (every \
          method that can start, at N = {:?}, each at its default step and at its tolerance step \
-         where that is another, without a shadow) whose largest error also holds EPS. A tolerance is checked only where the reference's own \
-         error is at most {REFERENCE_MARGIN} × EPS.\n\n## References\n\n\
+         where that is another, without a shadow) whose largest error also holds EPS. A \
+         tolerance is checked only where the reference's own error is at most \
+         {REFERENCE_MARGIN} × EPS.\n\n## References\n\n\
          | scene | N (runs at N/2, N, 2N) | observed order | own error |\n|---|---|---|---|\n",
         spec.duration,
         MethodKind::REFERENCE,
