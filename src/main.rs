@@ -130,6 +130,9 @@ fn announce(args: &RunArgs, plans: &[Planned]) {
             Some(Basis::CommittedTighter) => {
                 "the committed error model, here tighter than the pilots' own (measured at N ≤ 64)"
             }
+            Some(Basis::Atlas) => {
+                "the release atlas: the rods' worst error to t = 3 measured up to N = 566 from this angle's neighbours among 0°, 10°, …, 90°, times the margin the angles between them showed (`scripts/release-atlas.sh`)"
+            }
             Some(Basis::Committed) | None => {
                 "the committed error model, fitted to t = 3 over six scenes by `rope study --estimate-check`, no cheaper run found by the pilots that were worth their cost"
             }

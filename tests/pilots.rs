@@ -123,9 +123,9 @@ fn a_release_from_30_degrees_holds_1e_3_against_a_fine_reference_at_every_frame(
     thirty_degrees_holds("1e-3", fine);
 }
 
-/// Why `--tolerance 1e-3` from 30° cannot find the grid's cheapest run (rattle at N = 283,
-/// within a fifth of EPS): the tip's true error constant falls at large N, and pilots flown
-/// higher would not see it. The largest of |x_N − x_{N/2}| over the frames falls at order
+/// Why `--tolerance 1e-3` from 30° needs the release atlas to find a run near the grid's
+/// cheapest (N = 283, within a fifth of EPS): the tip's true error constant falls at large N,
+/// and pilots flown higher would not see it. The largest of |x_N − x_{N/2}| over the frames falls at order
 /// below 1 from N = 64 to 256, while the true worst error falls at order above 1.3.
 /// `cargo test --release --test pilots -- --ignored --nocapture` prints the table.
 #[test]
@@ -236,15 +236,17 @@ fn a_pilots_bound_is_its_estimate_rescaled_to_the_order_it_observes() {
 
 #[test]
 fn pilots_stop_where_measuring_would_cost_more_than_the_committed_choice() {
-    // From 30° at 1e-2 the committed models choose a run of a hundredth of a second. No pilot
-    // holds 1e-2, and their first-order model asks for more segments than the committed one,
-    // the tighter: the top level would cost more than that run, so it is never flown and the
-    // committed choice is made.
+    // From 30° at 1e-2 the committed model, the release atlas's, chooses a run of a hundredth
+    // of a second. No pilot holds 1e-2, and their first-order model asks for more segments
+    // than the atlas's, the tighter: the top level would cost more than that run, so it is
+    // never flown and the committed choice is made.
     let thirty = Scene::Release { angle_deg: 30.0 };
     let (choice, pilots) = pilot::choose(1e-2, &thirty, 3.0, 60.0, u64::MAX).unwrap();
     let committed = tolerance::choose(1e-2, 3.0, &thirty, |_, _, _| true).unwrap();
     assert_eq!(choice, committed);
-    assert_eq!(pilots.basis, pilot::Basis::CommittedTighter);
+    assert_eq!(pilots.basis, pilot::Basis::Atlas);
+    let atlas = tolerance::from_atlas(choice.method, &thirty, 3.0, 1e-2).unwrap();
+    assert_eq!(choice.segments, atlas.segments_for(1e-2));
     let top = pilot::LEVELS[pilot::LEVELS.len() - 1];
     for p in &pilots.flown {
         assert!(p.held_at.is_none(), "{p:?}");

@@ -24,10 +24,11 @@ impl ErrorModel {
         self.safety * self.predict(segments)
     }
 
-    /// Fewest segments whose bound is at most `tolerance`.
+    /// Fewest segments whose bound is at most `tolerance` (a count within 1e-9 of a whole
+    /// one is that one: rounding does not add a segment).
     pub fn segments_for(&self, tolerance: f64) -> usize {
         let h = (tolerance / (self.safety * self.constant)).powf(1.0 / self.order);
-        (1.0 / h).ceil() as usize
+        (1.0 / h - 1e-9).ceil() as usize
     }
 
     /// The least-squares fit of log(error) = log C + `order` · log h to `(segments, error)`

@@ -18,6 +18,7 @@
 //! import what they use from the file that defines it, never through this one, so that no
 //! two of them import each other.
 
+pub mod atlas;
 pub mod chain;
 pub(crate) mod constraint_matrix;
 pub mod error_model;

@@ -1,8 +1,10 @@
 //! The rule `rope run --tolerance EPS` uses to model a scene with no more than it needs: the
 //! cheapest method, N and k whose tip error is predicted to stay within EPS, from each
-//! method's error model (with its measured safety factor) and cost in its
-//! [`Descriptor`](super::Descriptor).
+//! method's committed error model ([`committed_model`]: the release atlas where it serves,
+//! else the one law with its measured safety factor in its
+//! [`Descriptor`](super::Descriptor)) and its cost.
 
+use super::atlas::Atlas;
 use super::error_model::ErrorModel;
 use super::registry::MethodKind;
 use crate::model::Scene;
@@ -37,8 +39,36 @@ pub fn choose(
     scene: &Scene,
     fits: impl Fn(MethodKind, usize, f64) -> bool,
 ) -> Option<Choice> {
-    let committed = |m: MethodKind| Some(m.descriptor().error_model);
+    let committed = |m: MethodKind| Some(committed_model(m, scene, duration, tolerance));
     choose_with(tolerance, duration, scene, committed, MIN_SEGMENTS, fits)
+}
+
+/// `method`'s committed error model from `scene` to `duration` for `tolerance`: the release
+/// atlas's ([`from_atlas`]) where it serves, else the method's one law, fitted to the worst
+/// of six scenes.
+pub fn committed_model(
+    method: MethodKind,
+    scene: &Scene,
+    duration: f64,
+    tolerance: f64,
+) -> ErrorModel {
+    from_atlas(method, scene, duration, tolerance).unwrap_or(method.descriptor().error_model)
+}
+
+/// The release atlas's error model for `method` from `scene` to `duration` at `tolerance`:
+/// `None` unless the method is of the rods the atlas measured (the chain's discretization),
+/// the scene a release, the run within the atlas's window and the tolerance within its N.
+pub fn from_atlas(
+    method: MethodKind,
+    scene: &Scene,
+    duration: f64,
+    tolerance: f64,
+) -> Option<ErrorModel> {
+    let measured = MethodKind::REFERENCE.descriptor().discretization;
+    if method.descriptor().discretization != measured {
+        return None;
+    }
+    Atlas::committed()?.model(scene, duration, tolerance)
 }
 
 /// As [`choose`], with each method's error model given by `model_of` (the scene's own, from

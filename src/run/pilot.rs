@@ -132,6 +132,10 @@ pub enum Basis {
     CommittedTighter,
     /// The committed model alone: no pilot was worth its cost, or none measured anything.
     Committed,
+    /// The committed model, from the release atlas ([`tolerance::from_atlas`]): the rods'
+    /// error measured from this angle's neighbours up to large N, alone or tighter than the
+    /// pilots' own.
+    Atlas,
 }
 
 impl Basis {
@@ -141,6 +145,7 @@ impl Basis {
             Self::Held => "a pilot held",
             Self::OwnModel => "pilots' model",
             Self::CommittedTighter | Self::Committed => "committed model",
+            Self::Atlas => "release atlas",
         }
     }
 }
@@ -236,7 +241,7 @@ fn climb(
                 Some(_) => None,
             };
             // Every model as it now stands: a method's older choice goes with its older model.
-            let modelled = cheapest_modelled(eps, duration, &pilots, &seconds, fits);
+            let modelled = cheapest_modelled(eps, scene, duration, &pilots, &seconds, fits);
             best = match (modelled, by_committed) {
                 (Some(m), Some(c)) if c.seconds < m.seconds => Some(c),
                 (Some(m), _) => Some(m),
@@ -251,6 +256,7 @@ fn climb(
 /// [`tighter_model`]) and that `fits`.
 fn cheapest_modelled(
     eps: f64,
+    scene: &Scene,
     duration: f64,
     pilots: &[Pilot],
     seconds: impl Fn(&Choice) -> f64,
@@ -260,12 +266,13 @@ fn cheapest_modelled(
         .iter()
         .filter_map(|pilot| {
             let method = pilot.method;
-            let model = tighter_model(method, eps, pilots)?;
+            let model = tighter_model(method, eps, scene, duration, pilots)?;
             let choice = tolerance::by_model(method, &model, eps, LEVELS[0], duration);
             if !fits(method, choice.segments, choice.dt) {
                 return None;
             }
-            let basis = match model == method.descriptor().error_model {
+            let committed = tolerance::committed_model(method, scene, duration, eps);
+            let basis = match model == committed {
                 true => Basis::CommittedTighter,
                 false => Basis::OwnModel,
             };
@@ -301,14 +308,22 @@ fn own_model(method: MethodKind, measured: &[(usize, f64)]) -> Option<ErrorModel
     })
 }
 
-/// Of `method`'s own model (from its pilots) and its committed one, the one that asks fewer
-/// segments for `eps`; `None` without an own model. Both bound measured errors: the own
-/// model the scene's at N ≤ 64, extrapolated; the committed one the worst of six scenes up to
-/// large N. Where a whip's error constant falls at large N, which the pilots cannot see, the
-/// committed model is the tighter (from 30°: 0.49/N against the pilots' 0.84/N).
-pub fn tighter_model(method: MethodKind, eps: f64, pilots: &[Pilot]) -> Option<ErrorModel> {
+/// Of `method`'s own model (from its pilots) and its committed one for `scene` to `duration`
+/// ([`tolerance::committed_model`]), the one that asks fewer segments for `eps`; `None`
+/// without an own model. Both bound measured errors: the own model the scene's at N ≤ 64,
+/// extrapolated; the committed one the release atlas's at this angle's neighbours, or the
+/// worst of six scenes, up to large N. Where a whip's error constant falls at large N, which
+/// the pilots cannot see, the committed model is the tighter (from 30°: 0.49/N against the
+/// pilots' 0.84/N).
+pub fn tighter_model(
+    method: MethodKind,
+    eps: f64,
+    scene: &Scene,
+    duration: f64,
+    pilots: &[Pilot],
+) -> Option<ErrorModel> {
     let own = pilots.iter().find(|p| p.method == method)?.model?;
-    let committed = method.descriptor().error_model;
+    let committed = tolerance::committed_model(method, scene, duration, eps);
     Some(if committed.segments_for(eps) < own.segments_for(eps) {
         committed
     } else {
@@ -349,7 +364,11 @@ pub fn choose(
     let seconds = |c: &Choice| cost_of(c.method, c.segments, c.dt).seconds;
     let (flown, best) = climb(eps, scene, duration, committed, seconds, fits);
     if let Some(best) = best {
-        let basis = best.basis;
+        let from_atlas = tolerance::from_atlas(best.choice.method, scene, duration, eps);
+        let basis = match best.basis {
+            Basis::Committed | Basis::CommittedTighter if from_atlas.is_some() => Basis::Atlas,
+            basis => basis,
+        };
         return Ok((best.choice, Pilots { flown, basis }));
     }
     let best =

@@ -15,6 +15,7 @@
 //! * [`tolerance_check`]: `--tolerance-check`, what `--tolerance` chooses against the truth
 //!   and against the cheapest run of a grid; [`tolerance_chart`]: its chart.
 
+pub mod atlas_chart;
 pub mod blow_up;
 pub mod charts;
 pub mod check_chart;

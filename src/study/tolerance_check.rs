@@ -23,6 +23,10 @@ pub const REFERENCE_MARGIN: f64 = 0.1;
 /// The chosen run's CPU may be at most this many times the grid's cheapest.
 pub const CPU_FACTOR: f64 = 3.0;
 
+/// Release angles the check adds to the estimate check's scenes: between the release atlas's
+/// angles and its held-out ones, so that they test the atlas where it measured nothing.
+pub const UNSEEN_ANGLES: [f64; 2] = [37.0, 52.0];
+
 /// What to check.
 #[derive(Clone, Debug)]
 pub struct CheckSpec {
@@ -40,13 +44,16 @@ pub struct CheckSpec {
 }
 
 impl Default for CheckSpec {
-    /// The check: the six scenes of the estimate check, EPS = 1e-2, 1e-3 and 1e-4
-    /// (each where the reference allows), to t = 3, against the chain extrapolated from
+    /// The check: the six scenes of the estimate check and two releases that neither
+    /// the release atlas nor its held-out angles measure (37° and 52°), EPS = 1e-2, 1e-3 and
+    /// 1e-4 (each where the reference allows), to t = 3, against the chain extrapolated from
     /// N/2, N and 2N with N from 200 up to 1600 (the whips need N = 1600: 3200 rods, two
     /// minutes a scene), beside a grid up to N = 400.
     fn default() -> Self {
+        let mut scenes = super::estimate_check::CheckSpec::default().scenes;
+        scenes.extend(UNSEEN_ANGLES.map(|angle_deg| Scene::Release { angle_deg }));
         Self {
-            scenes: super::estimate_check::CheckSpec::default().scenes,
+            scenes,
             tolerances: vec![1e-2, 1e-3, 1e-4],
             duration: 3.0,
             reference_segments: 200,

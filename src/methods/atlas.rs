@@ -1,0 +1,332 @@
+//! The release atlas: the committed error model of a release, per release angle.
+//!
+//! A method's one error law ([`Descriptor::error_model`](super::Descriptor::error_model)) is
+//! the worst of six scenes up to large N: the horizontal release's whip, whose error constant
+//! stays near 0.45/N. From most other angles the rods' worst tip error to t = 3 is far from
+//! one law: its constant rises and falls with N by up to a factor of 2 (from 30° it falls from
+//! 0.42/N at N = 64 to 0.21/N at N = 400; from 80° it grows from 0.11/N to 0.27/N), and the
+//! pilots, at N ≤ 64, see only the start of it. The atlas is that error measured: the chain at
+//! its tolerance step from each release angle 0°, 10°, …, 90° at N = 16 … 566, against the
+//! chain extrapolated from N = 800, 1600 and 3200 (`scripts/release-atlas.sh`, which writes
+//! `assets/release-atlas/atlas.csv`, read here at build time).
+//!
+//! For an angle between two of the atlas's, the larger of their two errors at each N is
+//! taken, times a margin measured at the held-out angles 5°, 15°, …, 85°: the largest ratio of
+//! a held-out angle's error to that of its two neighbours. Between the atlas's N, the error
+//! is taken as first order from the largest constant (error × N) at that N and above. The
+//! atlas serves only what it measured: the rods, a release, runs to t ≤ 3, N ≤ 566, and
+//! errors at least ten times its references' own; elsewhere the method's one law stands.
+
+use super::error_model::ErrorModel;
+use crate::model::Scene;
+use std::sync::OnceLock;
+
+/// The release angles the atlas measures, in degrees below the horizontal.
+pub const ATLAS_ANGLES: [f64; 10] = [0.0, 10.0, 20.0, 30.0, 40.0, 50.0, 60.0, 70.0, 80.0, 90.0];
+
+/// The angles measured only to find the margin for angles between the atlas's.
+pub const HELD_OUT_ANGLES: [f64; 9] = [5.0, 15.0, 25.0, 35.0, 45.0, 55.0, 65.0, 75.0, 85.0];
+
+/// The segment counts measured at each angle (√2 apart from 50 up).
+pub const SEGMENTS: [usize; 11] = [16, 25, 32, 50, 64, 100, 141, 200, 283, 400, 566];
+
+/// The simulated time over which the worst error is measured: the atlas serves runs no longer.
+pub const WINDOW: f64 = 3.0;
+
+/// An entry is trusted only where its reference's own error is at most this fraction of it.
+pub const REFERENCE_MARGIN: f64 = 0.1;
+
+/// The measurements, as `scripts/release-atlas.sh` wrote them.
+const CSV: &str = include_str!("../../assets/release-atlas/atlas.csv");
+
+/// One angle's worst errors.
+#[derive(Clone, Debug, PartialEq)]
+struct Row {
+    angle_deg: f64,
+    /// A bound on the worst tip error at each of [`SEGMENTS`] (the measured error plus its
+    /// reference's own), trusted from N = 16 up to the first that is not; `None` from there.
+    bound: [Option<f64>; SEGMENTS.len()],
+}
+
+/// The atlas and held-out rows, and the margin the held-out rows measure.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Atlas {
+    rows: Vec<Row>,
+    held_out: Vec<Row>,
+    /// The largest ratio of a held-out angle's error to the larger of its neighbours' (≥ 1),
+    /// over every N where both are trusted.
+    pub margin: f64,
+}
+
+/// Why the atlas file could not be read (a test reads the committed one).
+#[derive(Debug, thiserror::Error)]
+#[error("assets/release-atlas/atlas.csv, line {line}: {what}")]
+pub struct AtlasError {
+    line: usize,
+    what: String,
+}
+
+impl Atlas {
+    /// The committed atlas, read once; `None` if the file is absent or malformed (a test
+    /// makes sure the committed one reads), in which case every release keeps the one law.
+    pub fn committed() -> Option<&'static Atlas> {
+        static ATLAS: OnceLock<Option<Atlas>> = OnceLock::new();
+        ATLAS.get_or_init(|| Atlas::parse(CSV).ok()).as_ref()
+    }
+
+    /// Reads the CSV `scripts/release-atlas.sh` writes: a header, then
+    /// `set,angle_deg,segments,worst,reference_segments,reference_own_error` lines, `set`
+    /// being `atlas` or `held-out`.
+    pub fn parse(text: &str) -> Result<Atlas, AtlasError> {
+        let mut rows: Vec<Row> = Vec::new();
+        let mut held_out: Vec<Row> = Vec::new();
+        for (i, line) in text.lines().enumerate().skip(1) {
+            let bad = |what: &str| AtlasError {
+                line: i + 1,
+                what: what.to_owned(),
+            };
+            let fields: Vec<&str> = line.split(',').collect();
+            let [set, angle, segments, worst, _, own] = fields.as_slice() else {
+                return Err(bad("six fields expected"));
+            };
+            let number = |s: &str| s.trim().parse::<f64>().map_err(|_| bad("not a number"));
+            let (angle_deg, worst, own) = (number(angle)?, number(worst)?, number(own)?);
+            let segments: usize = segments.trim().parse().map_err(|_| bad("not a count"))?;
+            let j = SEGMENTS
+                .iter()
+                .position(|&n| n == segments)
+                .ok_or_else(|| bad("a segment count the atlas does not measure"))?;
+            let table = match *set {
+                "atlas" => &mut rows,
+                "held-out" => &mut held_out,
+                _ => return Err(bad("the set is neither atlas nor held-out")),
+            };
+            if table.last().is_none_or(|r| r.angle_deg != angle_deg) {
+                table.push(Row {
+                    angle_deg,
+                    bound: [None; SEGMENTS.len()],
+                });
+            }
+            let trusted = worst.is_finite() && own <= REFERENCE_MARGIN * worst;
+            if let Some(row) = table.last_mut() {
+                row.bound[j] = trusted.then_some(worst + own);
+            }
+        }
+        for row in rows.iter_mut().chain(held_out.iter_mut()) {
+            // Trusted from N = 16 up to the first that is not.
+            if let Some(first_gap) = row.bound.iter().position(Option::is_none) {
+                row.bound[first_gap..].fill(None);
+            }
+        }
+        rows.sort_by(|a, b| a.angle_deg.total_cmp(&b.angle_deg));
+        if rows.len() < 2 {
+            return Err(AtlasError {
+                line: 1,
+                what: "fewer than two atlas angles".to_owned(),
+            });
+        }
+        let mut atlas = Atlas {
+            rows,
+            held_out,
+            margin: 1.0,
+        };
+        atlas.margin = atlas
+            .held_out
+            .iter()
+            .filter_map(|h| Some((h, atlas.between(h.angle_deg)?)))
+            .flat_map(|(h, neighbours)| {
+                h.bound
+                    .iter()
+                    .zip(neighbours)
+                    .filter_map(|pair| match pair {
+                        (Some(e), Some(n)) => Some(e / n),
+                        _ => None,
+                    })
+                    .collect::<Vec<_>>()
+            })
+            .fold(1.0, f64::max);
+        Ok(atlas)
+    }
+
+    /// Each atlas angle's trusted bounds, as (N, worst error) from N = 16 up: what the chart
+    /// draws.
+    pub fn rows(&self) -> impl Iterator<Item = (f64, Vec<(usize, f64)>)> + '_ {
+        self.rows.iter().map(|r| {
+            let trusted = SEGMENTS
+                .iter()
+                .zip(r.bound)
+                .map_while(|(&n, b)| Some((n, b?)))
+                .collect();
+            (r.angle_deg, trusted)
+        })
+    }
+
+    /// The larger of the two atlas rows around `angle_deg` at each N (the one row at an atlas
+    /// angle), trusted where both are; `None` outside the atlas's angles.
+    fn between(&self, angle_deg: f64) -> Option<[Option<f64>; SEGMENTS.len()]> {
+        let i = self.rows.iter().position(|r| r.angle_deg >= angle_deg)?;
+        let high = &self.rows[i];
+        let low = match high.angle_deg == angle_deg {
+            true => high,
+            false => self.rows.get(i.checked_sub(1)?)?,
+        };
+        Some(std::array::from_fn(|j| {
+            match (low.bound[j], high.bound[j]) {
+                (Some(a), Some(b)) => Some(a.max(b)),
+                _ => None,
+            }
+        }))
+    }
+
+    /// The rods' error model from `scene` to `duration` for `tolerance`: first order, its
+    /// constant the largest error × N of the angle's neighbours (times [`Atlas::margin`]) at
+    /// the fewest N of the atlas from which it holds `tolerance`; `None` for a mode, a run
+    /// longer than [`WINDOW`], or a tolerance the atlas's trusted N do not reach.
+    pub fn model(&self, scene: &Scene, duration: f64, tolerance: f64) -> Option<ErrorModel> {
+        let Scene::Release { angle_deg } = *scene else {
+            return None;
+        };
+        if duration.is_nan() || duration > WINDOW || tolerance.is_nan() || tolerance <= 0.0 {
+            return None;
+        }
+        let bound = self.between(angle_deg)?;
+        let trusted = bound.iter().take_while(|b| b.is_some()).count();
+        let last = *SEGMENTS.get(trusted.checked_sub(1)?)?;
+        // Each trusted N with the largest constant (error × N) there and above: a bound at
+        // every N from it up.
+        let mut tail = 0f64;
+        let constants: Vec<(usize, f64)> = (0..trusted)
+            .rev()
+            .map(|j| {
+                tail = tail.max(bound[j].unwrap_or(f64::INFINITY) * SEGMENTS[j] as f64);
+                (SEGMENTS[j], tail)
+            })
+            .collect();
+        // The fewest segments each constant asks for, never fewer than where it starts to
+        // bound, and none past the atlas's trusted N.
+        let (needed, from, constant) = constants
+            .into_iter()
+            .map(|(n, c)| {
+                let needed = (self.margin * c / tolerance - 1e-9).ceil() as usize;
+                (needed.max(n), n, c)
+            })
+            .filter(|&(needed, _, _)| needed <= last)
+            .min_by_key(|&(needed, _, _)| needed)?;
+        // Where the constant itself would ask for fewer than `from`, the law is raised to ask
+        // for `from`: its bound there is then `tolerance`, above what the atlas measured.
+        let at_least = match needed == from {
+            true => tolerance * (from as f64 - 0.5) / self.margin,
+            false => 0.0,
+        };
+        Some(ErrorModel {
+            constant: constant.max(at_least),
+            order: 1.0,
+            safety: self.margin,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn csv(rows: &[(&str, f64, [f64; SEGMENTS.len()])]) -> String {
+        let mut text =
+            "set,angle_deg,segments,worst,reference_segments,reference_own_error\n".to_owned();
+        for (set, angle, errors) in rows {
+            for (n, e) in SEGMENTS.iter().zip(errors) {
+                text += &format!("{set},{angle},{n},{e:e},1600,0\n");
+            }
+        }
+        text
+    }
+
+    /// Errors c/N at every N.
+    fn law(c: f64) -> [f64; SEGMENTS.len()] {
+        SEGMENTS.map(|n| c / n as f64)
+    }
+
+    #[test]
+    fn the_committed_atlas_reads_and_its_margin_is_measured() {
+        let atlas = Atlas::parse(CSV).expect("the committed atlas reads");
+        assert_eq!(atlas.rows.len(), ATLAS_ANGLES.len());
+        assert_eq!(atlas.held_out.len(), HELD_OUT_ANGLES.len());
+        assert!(
+            atlas.margin >= 1.0 && atlas.margin < 2.0,
+            "{}",
+            atlas.margin
+        );
+    }
+
+    #[test]
+    fn an_angle_between_two_takes_the_larger_error_and_the_held_out_margin() {
+        let text = csv(&[
+            ("atlas", 0.0, law(0.4)),
+            ("atlas", 10.0, law(0.2)),
+            ("held-out", 5.0, law(0.5)),
+        ]);
+        let atlas = Atlas::parse(&text).unwrap();
+        assert!((atlas.margin - 1.25).abs() < 1e-12);
+        let model = atlas
+            .model(&Scene::Release { angle_deg: 7.0 }, 3.0, 1e-3)
+            .unwrap();
+        // 0.4 × 1.25 / 1e-3 = 500 segments.
+        assert_eq!(model.segments_for(1e-3), 500);
+        // Past the atlas's N, in a mode, or past its window: no model.
+        assert!(
+            atlas
+                .model(&Scene::Release { angle_deg: 7.0 }, 3.0, 1e-4)
+                .is_none()
+        );
+        assert!(
+            atlas
+                .model(&Scene::Release { angle_deg: 7.0 }, 3.5, 1e-3)
+                .is_none()
+        );
+        let mode = Scene::Mode {
+            number: 1,
+            amplitude: 0.05,
+        };
+        assert!(atlas.model(&mode, 3.0, 1e-3).is_none());
+    }
+
+    #[test]
+    fn a_constant_that_falls_with_n_is_used_only_from_where_it_falls() {
+        // 0.4/N up to N = 100, then 0.2/N: 1e-3 needs N = 200 from the smaller constant
+        // (0.2 / 1e-3), though 0.2 / 1.2e-3 alone would ask for 167 < 200 … from N = 141 up.
+        let mut errors = law(0.4);
+        for (e, n) in errors.iter_mut().zip(SEGMENTS) {
+            if n >= 141 {
+                *e = 0.2 / n as f64;
+            }
+        }
+        let atlas = Atlas::parse(&csv(&[("atlas", 0.0, errors), ("atlas", 10.0, errors)])).unwrap();
+        let at = |eps| {
+            atlas
+                .model(&Scene::Release { angle_deg: 0.0 }, 3.0, eps)
+                .unwrap()
+                .segments_for(eps)
+        };
+        assert_eq!(at(1e-3), 200);
+        // 1.6e-3 would need 125 by the smaller constant: it bounds only from 141 up.
+        assert_eq!(at(1.6e-3), 141);
+        // 1e-2: 40 by the larger constant, which bounds every N.
+        assert_eq!(at(1e-2), 40);
+    }
+
+    #[test]
+    fn an_entry_whose_reference_is_too_coarse_ends_the_row() {
+        let mut text = csv(&[("atlas", 10.0, law(0.2))]);
+        // The 0° row: its reference's own error 1e-3, above a tenth of every error past N = 50.
+        for (n, e) in SEGMENTS.iter().zip(law(0.5)) {
+            text += &format!("atlas,0,{n},{e:e},1600,1e-3\n");
+        }
+        let atlas = Atlas::parse(&text).unwrap();
+        let release = Scene::Release { angle_deg: 0.0 };
+        assert_eq!(
+            atlas.model(&release, 3.0, 2e-2).unwrap().segments_for(2e-2),
+            28
+        );
+        assert!(atlas.model(&release, 3.0, 5e-3).is_none());
+    }
+}

@@ -1,0 +1,77 @@
+//! The chart of the release atlas: the rods' error constant (worst tip error to t = 3, times
+//! N) against N, one line per release angle, beside the chain's one law: where a release
+//! needs fewer segments than the horizontal's whip asks of every scene.
+
+use super::charts::{Drawn, SANS, legend, render_chart};
+use crate::methods::MethodKind;
+use crate::methods::atlas::Atlas;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::path::Path;
+
+/// `atlas.svg` and `.png` into `dir`.
+pub fn write(dir: &Path, atlas: &Atlas) -> anyhow::Result<()> {
+    render_chart!(dir, "atlas", draw, atlas)
+}
+
+/// The colour of the `i`-th of `count` angles: red at the horizontal to blue at the vertical.
+fn angle_colour(i: usize, count: usize) -> RGBColor {
+    let f = i as f64 / (count.max(2) - 1) as f64;
+    let mix = |a: f64, b: f64| (a + (b - a) * f) as u8;
+    RGBColor(mix(210.0, 30.0), mix(40.0, 90.0), mix(30.0, 210.0))
+}
+
+fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, atlas: &Atlas) -> Drawn<DB> {
+    root.fill(&WHITE)?;
+    let rows: Vec<(f64, Vec<(usize, f64)>)> = atlas
+        .rows()
+        .filter(|(_, points)| points.iter().any(|&(_, e)| e > 1e-9))
+        .collect();
+    let law = MethodKind::Chain.descriptor().error_model;
+    let (lo, hi) = (10.0, 800.0);
+    let mut chart = ChartBuilder::on(root)
+        .caption(
+            "The release atlas: the rods' worst tip error to t = 3, times N, from each release angle",
+            (SANS, 20),
+        )
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(70)
+        .build_cartesian_2d((lo..hi).log_scale(), 0.0..0.6)?;
+    chart
+        .configure_mesh()
+        .x_desc("N (segments)")
+        .y_desc("worst tip error × N")
+        .x_label_formatter(&|v| format!("{v:.0}"))
+        .y_label_formatter(&|v| format!("{v:.2}"))
+        .label_style((SANS, 13))
+        .draw()?;
+    let bound = law.constant * law.safety;
+    chart
+        .draw_series(LineSeries::new(
+            [(lo, bound), (hi, bound)],
+            BLACK.stroke_width(2),
+        ))?
+        .label(format!(
+            "the chain's one law, {:.3} × {:.2} (every scene)",
+            law.constant, law.safety
+        ))
+        .legend(|(x, y)| PathElement::new([(x, y), (x + 16, y)], BLACK.stroke_width(2)));
+    for (i, (angle, points)) in rows.iter().enumerate() {
+        let colour = angle_colour(i, rows.len());
+        let line: Vec<(f64, f64)> = points
+            .iter()
+            .map(|&(n, e)| (n as f64, e * n as f64))
+            .collect();
+        chart
+            .draw_series(LineSeries::new(line.clone(), colour.stroke_width(2)))?
+            .label(format!("{angle}°"))
+            .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], colour.stroke_width(2)));
+        chart.draw_series(line.into_iter().map(|p| Circle::new(p, 3, colour.filled())))?;
+    }
+    legend(
+        chart.configure_series_labels(),
+        SeriesLabelPosition::LowerRight,
+        12,
+    )
+}
