@@ -4,11 +4,12 @@
 //! the worst of six scenes up to large N: the horizontal release's whip, whose error constant
 //! stays near 0.45/N. From most other angles the rods' worst tip error to t = 3 is far from
 //! one law: its constant rises and falls with N by up to a factor of 2 (from 30° it falls from
-//! 0.42/N at N = 64 to 0.21/N at N = 400; from 80° it grows from 0.11/N to 0.27/N), and the
-//! pilots, at N ≤ 64, see only the start of it. The atlas is that error measured: the chain at
-//! its tolerance step from each release angle 0°, 10°, …, 90° at N = 16 … 566, against the
-//! chain extrapolated from N = 800, 1600 and 3200 (`scripts/release-atlas.sh`, which writes
-//! `assets/release-atlas/atlas.csv`, read here at build time).
+//! 0.42/N at N = 64 to 0.21/N at N = 400; from 80° it grows from 0.11/N at N = 16 to 0.20/N
+//! at N = 200), and the pilots, at N ≤ 64, see only the start of it. The atlas is that error
+//! measured: the chain at its tolerance step from each release angle 0°, 10°, …, 90° at
+//! N = 16 … 566, against the chain extrapolated from N = 800, 1600 and 3200
+//! (`scripts/release-atlas.sh`, which writes `assets/release-atlas/atlas.csv`, read here at
+//! build time).
 //!
 //! For an angle between two of the atlas's, the larger of their two errors at each N is
 //! taken, times a margin measured at the held-out angles 5°, 15°, …, 85°: the largest ratio of
