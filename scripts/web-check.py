@@ -5,8 +5,8 @@ Starts `rope run --web … --no-browser` with RUN_ARGS (by default two methods s
 `--method seed,chain --duration inf --realtime`: the seed scheme blows up after some tens of
 seconds and the chain goes on), loads the page in headless
 Chromium (Debian's chromium-headless-shell, driven by Playwright; nothing downloads a
-browser) with WebGL forced, and checks that the viewer says it streams from the run's gRPC
-endpoint, that no page error and no "Rerun has crashed" appears, and that the canvas is not
+browser) with WebGL forced, and checks that the viewer says it streams from the run's two
+gRPC endpoints (the history's, and the live picture's one port above it), that no page error and no "Rerun has crashed" appears, and that the canvas is not
 blank; saves a screenshot; stops the run with SIGTERM.
 
     scripts/web-check.py [--screenshot PATH] [--seconds S] [--run-args "ARGS"]
@@ -42,6 +42,19 @@ def free_port() -> int:
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
         return s.getsockname()[1]
+
+
+def free_pair() -> int:
+    """A free port whose next port is free too: the history's endpoint and the live picture's."""
+    for _ in range(100):
+        port = free_port()
+        try:
+            with socket.socket() as s:
+                s.bind(("127.0.0.1", port + 1))
+            return port
+        except OSError:
+            continue
+    raise RuntimeError("no two free ports in a row")
 
 
 def skip(why: str) -> None:
@@ -131,6 +144,39 @@ def soak(page, rope_pid: int, seconds: float, every: float, csv: pathlib.Path) -
     return failures
 
 
+def stall(page, rope_pid: int, seconds: float, every: float, csv: pathlib.Path) -> list:
+    """Stops every browser process for `seconds` (a page that reads nothing), sampling rope's
+    resident memory every `every` s; resumes them and checks that the page answers and that
+    its picture moves again. Returns the failures seen."""
+    rows = ["seconds,stopped,rope_mb"]
+    pids = browser_pids()
+    for pid in pids:
+        subprocess.run(["kill", "-STOP", str(pid)], check=False)
+    started = time.time()
+    while time.time() - started < seconds:
+        rows.append(f"{time.time() - started:.0f},1,{resident_mb([rope_pid]):.1f}")
+        print(f"web-check: stalled {rows[-1]}", flush=True)
+        time.sleep(min(every, max(0.0, seconds - (time.time() - started))))
+    for pid in pids:
+        subprocess.run(["kill", "-CONT", str(pid)], check=False)
+    failures = []
+    shots = []
+    for _ in range(6):  # a minute to catch up
+        time.sleep(10)
+        rows.append(f"{time.time() - started:.0f},0,{resident_mb([rope_pid]):.1f}")
+        print(f"web-check: resumed {rows[-1]}", flush=True)
+        try:
+            shots.append(hashlib.sha256(page.screenshot(timeout=20_000)).hexdigest())
+        except Exception as err:
+            failures.append(f"the page did not answer after the stall: {str(err).splitlines()[0]}")
+            break
+    if len(set(shots)) < 2:
+        failures.append("the page's picture did not move after the stall")
+    csv.parent.mkdir(parents=True, exist_ok=True)
+    csv.write_text("\n".join(rows) + "\n")
+    return failures
+
+
 def main() -> int:
     parser = argparse.ArgumentParser()
     parser.add_argument("--screenshot", default=str(ROOT / "target" / "web-check.png"))
@@ -138,6 +184,10 @@ def main() -> int:
     parser.add_argument("--soak", type=float, default=0.0, help="seconds to keep the page open")
     parser.add_argument("--soak-csv", default=str(ROOT / "target" / "web-soak.csv"))
     parser.add_argument("--sample-every", type=float, default=30.0, help="seconds between soak samples")
+    parser.add_argument("--viewport", default="1280x800",
+                        help="the page's size, WIDTHxHEIGHT (a smaller page draws faster in software)")
+    parser.add_argument("--stall", type=float, default=0.0,
+                        help="seconds to stop the browser (SIGSTOP) once data arrived, rope's memory sampled, then resume it")
     parser.add_argument("--run-args", default="--method seed,chain --duration inf --realtime",
                         help="the arguments of `rope run` besides --web, --serve-grpc and --no-browser")
     args = parser.parse_args()
@@ -153,7 +203,7 @@ def main() -> int:
         skip("no Playwright (pip install playwright)")
 
     rope = ROOT / "target" / "release" / "rope"
-    web, grpc = free_port(), free_port()
+    web, grpc = free_port(), free_pair()
     run = subprocess.Popen(
         [str(rope), "run", "--web", f"127.0.0.1:{web}", "--serve-grpc", f"127.0.0.1:{grpc}",
          "--no-browser", *args.run_args.split()],
@@ -177,16 +227,17 @@ def main() -> int:
             args=["--no-sandbox", "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
                   "--disable-background-networking", "--disable-component-update",
                   "--no-first-run", "--disable-sync"])
-        page = browser.new_page(viewport={"width": 1280, "height": 800})
+        width, height = (int(x) for x in args.viewport.split("x"))
+        page = browser.new_page(viewport={"width": width, "height": height})
         logs, errors = [], []
         page.on("console", lambda m: logs.append(m.text))
         page.on("pageerror", lambda e: errors.append(str(e)))
         page.goto(page_url)
         deadline = time.time() + args.seconds
-        stream = f"port: {grpc}"
+        stream, live_stream = f"port: {grpc}", f"port: {grpc + 1}"
 
-        def streaming(log: str) -> bool:
-            return "Streaming messages from gRPC endpoint" in log and stream in log
+        def streaming(log: str, port: str = stream) -> bool:
+            return "Streaming messages from gRPC endpoint" in log and port in log
 
         def data_arrived() -> bool:
             # The viewer migrates each record batch it decodes to its current schema.
@@ -197,6 +248,8 @@ def main() -> int:
                 break
             page.wait_for_timeout(500)
         page.wait_for_timeout(5000)
+        if args.stall > 0:
+            failures += stall(page, run.pid, args.stall, args.sample_every, pathlib.Path(args.soak_csv))
         if args.soak > 0:
             failures += soak(page, run.pid, args.soak, args.sample_every, pathlib.Path(args.soak_csv))
         try:
@@ -214,7 +267,9 @@ def main() -> int:
         failures.append("rope did not stop within 10 s of SIGTERM")
         code = None
     if not any(streaming(log) for log in logs):
-        failures.append(f"the page never said it streams from the gRPC endpoint ({stream})")
+        failures.append(f"the page never said it streams from the history's endpoint ({stream})")
+    if not any(streaming(log, live_stream) for log in logs):
+        failures.append(f"the page never said it streams from the live picture's endpoint ({live_stream})")
     if not data_arrived():
         failures.append("the page decoded no record batch: no data arrived")
     if errors:

@@ -474,16 +474,17 @@ pub struct RunArgs {
     #[arg(long, value_name = "EPS", allow_negative_numbers = true, allow_hyphen_values = true, conflicts_with_all = ["method", "segments", "dt"])]
     pub tolerance: Option<f64>,
 
-    /// Numerical method [default: the report's (seed); for --duration inf, one that stays
-    /// stable for ever (chain), as printed at the start]. A list (e.g. seed,chain,rattle)
+    /// Numerical method [default: the report's (seed); for a run left running (--duration
+    /// inf, --loop, --serve-grpc, --web), the one that keeps the energy at every frame
+    /// (midpoint), as printed at the start]. A list (e.g. seed,chain,rattle)
     /// runs the methods side by side on the same frame times, in one recording: each at
     /// --segments and its own default step (or --dt), brought down onto the frames' grid.
     #[arg(long, value_enum, value_delimiter = ',')]
     pub method: Vec<MethodKind>,
 
     /// Frames logged per time unit [default: 60; for several methods side by side, which
-    /// send a frame per method, 30, or 10 to a served viewer (--web, --serve-grpc), whose
-    /// browser keeps every frame].
+    /// send a frame per method, 30]. Viewers of a served, endless or looping run get each
+    /// frame as a live picture that replaces itself, and a history at --history-rate.
     #[arg(long, allow_negative_numbers = true, allow_hyphen_values = true)]
     pub log_rate: Option<f64>,
 
@@ -512,10 +513,6 @@ pub struct RunArgs {
     #[command(flatten)]
     pub output: OutputArgs,
 }
-
-/// Frames per time unit of several methods side by side to a served viewer: a browser keeps
-/// them all, and at this rate three methods stay below its memory limit for over an hour.
-pub const SERVED_SIDE_BY_SIDE_RATE: f64 = 10.0;
 
 /// How much of `--tolerance-check` to run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -585,25 +582,33 @@ impl RunArgs {
         scenes.into_iter().map(|scene| self.plan(scene)).collect()
     }
 
-    /// The method asked for (the first of a list), or the default for the duration.
+    /// The method asked for (the first of a list), or the default: for a run that lasts
+    /// (endless, looping or served), one whose energy is kept at every frame.
     pub fn method(&self) -> MethodKind {
         self.method
             .first()
             .copied()
-            .unwrap_or_else(|| MethodKind::default_for(self.duration))
+            .unwrap_or_else(|| MethodKind::default_for(self.lasts()))
     }
 
-    /// Frames per time unit: as asked, or 60; side by side (a frame per method), 30, or 10
-    /// to a served viewer (`--web`, `--serve-grpc`). A browser keeps every frame it is sent
-    /// and stopped when its count passed 2.3 GiB: three methods at 30 lasted 19 minutes,
-    /// at 10 they last the hour (docs/measurements.md, "Browser soak").
+    /// Whether the run is meant to be left running: endless (`--duration inf`), looping, or
+    /// served to viewers who join at any time.
+    pub fn lasts(&self) -> bool {
+        self.endless() || self.output.served_at().is_some()
+    }
+
+    /// Whether the run never ends by itself: `--duration inf`, or `--loop` until Ctrl-C.
+    pub fn endless(&self) -> bool {
+        self.duration.is_infinite() || self.repeat == Some(Passes::Forever)
+    }
+
+    /// Frames per time unit: as asked, or 60; side by side (a frame per method), 30. The
+    /// same wherever the recording goes, so that the steps (brought onto the frames' grid
+    /// side by side) and the outcome are the same: a served viewer gets a live picture and
+    /// a slow history, whatever the frame rate.
     pub fn log_rate(&self) -> f64 {
-        let served = self.output.web.is_some() || self.output.serve_grpc.is_some();
-        self.log_rate.unwrap_or(match (self.compares(), served) {
-            (false, _) => 60.0,
-            (true, false) => 30.0,
-            (true, true) => SERVED_SIDE_BY_SIDE_RATE,
-        })
+        self.log_rate
+            .unwrap_or(if self.compares() { 30.0 } else { 60.0 })
     }
 
     /// Whether several methods are to run side by side.

@@ -7,7 +7,9 @@ use rope::cli::{
     CheckSize, Cli, Command, Planned, RunArgs, StudyArgs, check_writable_file, writable_dir,
 };
 use rope::methods::MethodKind;
-use rope::recording::destinations::Output;
+use rope::recording::blueprint;
+use rope::recording::budget::Budget;
+use rope::recording::destinations::{Layouts, Output, Recording};
 use rope::recording::error::OutputError;
 use rope::recording::logger::RopeLogger;
 use rope::recording::viewer_sinks::ViewerLink;
@@ -63,27 +65,56 @@ fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
     let stop = stop_on_interrupt()?;
     let headline = shared_headline(&plans);
     let lanes = plans.first().map(Planned::lanes).unwrap_or_default();
-    let layout = rope::recording::blueprint::blueprint(headline.as_deref(), &lanes);
-    let output = match args.output.open("rope", layout) {
+    let rates = args.output.history_rates();
+    let layouts = Layouts {
+        everything: blueprint::blueprint(headline.as_deref(), &lanes),
+        live: blueprint::live(headline.as_deref(), &lanes, rates.shape_interval()),
+    };
+    let output = match args.output.open("rope", layouts, args.endless()) {
         Ok(output) => output,
         Err(err @ OutputError::Save { .. }) => return Ok(bad_input(&err)),
         Err(err) => return Err(err).context("opening the Rerun recording"),
     };
-    if let Some(url) = &output.serving {
+    if let (Some(url), Some(live)) = (&output.serving, &output.serving_live) {
         eprintln!(
-            "rope: serving at {url}: any number of viewers can join, at any time, with `rerun --connect {url}`, and get the history first; memory is kept within {} by dropping the oldest",
+            "rope: serving at {url} (the history: any number of viewers can join, at any time, and get it first; memory is kept within {} by dropping the oldest) and {live} (the live picture); watch with `rerun {url} {live}`",
             args.output.server_memory_limit
         );
     }
     if let Some(page) = &output.web_page {
         eprintln!("rope: watch it in a browser at {page}");
     }
+    let mut loggers = Vec::new();
+    for recording in &output.recordings {
+        loggers.push(
+            match recording {
+                Recording::Everything(rec) => RopeLogger::new(rec.clone()),
+                Recording::Live { history, live } => {
+                    RopeLogger::live(history.clone(), live.clone(), rates)
+                }
+            }
+            .context("logging the recording's styling")?,
+        );
+    }
+    if output
+        .recordings
+        .iter()
+        .any(|r| matches!(r, Recording::Live { .. }))
+    {
+        let budget = Budget::measure(&lanes, rates);
+        let text = budget.text();
+        eprintln!(
+            "rope: viewers get a live picture that replaces itself and a history of {} rows of each plot and {} shapes of the rope per time unit (--history-rate); {text}",
+            rates.series_per_unit, rates.shapes_per_unit
+        );
+        for logger in &mut loggers {
+            logger.note_in_parameters(format!("**For viewers:** {text}."));
+        }
+    }
     if let Some(link) = output.viewer.clone() {
         watch_viewer(link, output.survives_viewer_loss, Arc::clone(&stop));
     }
-    let mut logger =
-        RopeLogger::new(output.rec.clone()).context("logging the recording's styling")?;
-    let (mut summary, strayed) = run_passes(args, &plans, &mut logger, &stop)?;
+    let (mut summary, strayed) = run_passes(args, &plans, &mut loggers, &stop)?;
     if let Some(reason) = lost_viewer(&output) {
         summary.recording_error = Some(format!(
             "{reason} (the run reached t = {:.3})",
@@ -99,8 +130,18 @@ fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
         eprintln!("{}", summary.human());
     }
     energy_hint(strayed);
+    if let Some(dropped) = output
+        .live_dropped
+        .as_ref()
+        .map(|d| d.count())
+        .filter(|&n| n > 0)
+    {
+        eprintln!(
+            "rope: {dropped} messages of the live picture were not sent while its viewers were behind (the history and any file are whole)"
+        );
+    }
     serve_until_stopped(&output, &stop);
-    drop(logger); // closes the recording: the file's footer, the last data to viewers
+    drop(loggers); // closes the recordings: the file's footer, the last data to viewers
     drop(output);
     Ok(exit_code(&summary))
 }
@@ -201,9 +242,9 @@ fn announce(args: &RunArgs, plans: &[Planned]) {
         }
     }
     // (--tolerance with an endless run was refused before.)
-    if args.method.is_empty() && args.duration.is_infinite() {
+    if args.method.is_empty() && args.tolerance.is_none() && args.lasts() {
         eprintln!(
-            "rope: an endless run uses the {} method, which stays stable for ever (--method to choose another)",
+            "rope: a run left running (endless, looping or served) uses the {} method: it keeps the energy at every frame, at about three quarters of the chain's cost per time unit (the report's scheme blows up after tens of time units, the chain's energy drifts down, rattle's jumps at violent snaps; --method to choose another)",
             args.method()
         );
     }
@@ -356,7 +397,7 @@ fn stop_on_interrupt() -> anyhow::Result<Arc<AtomicBool>> {
 fn run_passes(
     args: &RunArgs,
     plans: &[Planned],
-    logger: &mut RopeLogger,
+    logger: &mut Vec<RopeLogger>,
     stop: &AtomicBool,
 ) -> anyhow::Result<(Summary, Strayed)> {
     let several = plans.len() > 1 || args.passes() != Some(1);

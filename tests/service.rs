@@ -6,8 +6,8 @@
 mod common;
 
 use common::cli::{
-    Recording, Scratch, free_port, rope, signal, signal_and_wait, start, stderr_lines_until,
-    stderr_of, summary, wait_for,
+    Recording, Scratch, free_pair, free_port, rope, signal, signal_and_wait, start,
+    stderr_lines_until, stderr_of, summary, wait_for,
 };
 use rerun::external::re_grpc_client;
 use std::process::Child;
@@ -74,10 +74,10 @@ impl LateViewer {
 }
 
 #[test]
-fn served_and_saved_a_viewer_joining_after_the_run_gets_every_frame_and_sigterm_ends_it() {
+fn served_and_saved_a_late_viewer_gets_the_history_the_file_every_frame_and_sigterm_ends_it() {
     let dir = Scratch::new("serve-late");
     let (json, rrd) = (dir.path("s.json"), dir.path("s.rrd"));
-    let port = free_port();
+    let port = free_pair();
     let mut server = start(&[
         "run",
         "--duration",
@@ -99,20 +99,31 @@ fn served_and_saved_a_viewer_joining_after_the_run_gets_every_frame_and_sigterm_
     let frames = summary(&json)["frames_logged"].as_u64().unwrap() as usize;
     assert_eq!(frames, 121);
 
+    // The history: the rope then at t = 0 and 2 (a shape every 2 time units), the plots at
+    // 1.5 rows a time unit (every 40th frame), the parameters with the page's budget.
     let viewer = LateViewer::join(port);
     let mut rec = Recording::default();
     let complete = viewer.read_until(&mut rec, Duration::from_secs(20), |r| {
-        r.temporal_rows("rope/segments") >= frames
+        r.temporal_rows("then/segments") >= 2 && r.temporal_rows("energy/total") >= 4
     });
-    assert!(
-        complete,
-        "the late viewer got {} of {frames} frames",
-        rec.temporal_rows("rope/segments")
+    let then = rec.sim_times("then/segments");
+    assert!(complete, "the late viewer got the rope then at {then:?}");
+    assert_eq!(then.len(), 2, "{then:?}");
+    for (t, expected) in then.iter().zip([0.0, 2.0]) {
+        assert!((t - expected).abs() < 1e-9, "{then:?}");
+    }
+    assert_eq!(
+        rec.temporal_rows("rope/segments"),
+        0,
+        "no frame of every frame"
     );
-    assert!(rec.has("parameters") && rec.has("energy/total"));
-    let times = rec.sim_times("rope/segments");
-    assert_eq!(times.first().copied(), Some(0.0), "history from t = 0");
-    assert!((times.last().unwrap() - 2.0).abs() < 1e-9);
+    let energy = rec.sim_times("energy/total");
+    assert_eq!(
+        energy.len(),
+        4,
+        "1.5 rows a time unit over [0, 2]: {energy:?}"
+    );
+    assert!(rec.has("parameters"));
 
     assert!(
         wait_for(&mut server, Duration::ZERO).is_none(),
@@ -123,48 +134,72 @@ fn served_and_saved_a_viewer_joining_after_the_run_gets_every_frame_and_sigterm_
     let stderr = stderr_of(&mut server);
     assert_eq!(status.code(), Some(0), "{stderr}");
     assert!(
-        stderr.contains(&format!("serving at {}", url(port))),
+        stderr.contains(&format!("serving at {}", url(port)))
+            && stderr.contains(&url(port + 1))
+            && stderr.contains("a browser page can stay open about"),
         "{stderr}"
     );
-    // Served and saved at once: the file holds the same frames.
-    assert_eq!(Recording::read(&rrd).temporal_rows("rope/segments"), frames);
+    // Served and saved at once: the file keeps every frame.
+    let saved = Recording::read(&rrd);
+    assert_eq!(saved.temporal_rows("rope/segments"), frames);
+    assert!(!saved.has("then/segments"));
 }
 
 #[test]
-fn an_endless_served_run_streams_history_then_live_frames_to_a_late_viewer() {
-    let port = free_port();
+fn an_endless_served_run_gives_a_late_viewer_its_history_and_a_live_picture() {
+    let port = free_pair();
     let mut server = start(&[
         "run",
         "--duration",
         "inf",
         "--realtime",
-        "2",
+        "4",
         "--serve-grpc",
         &port.to_string(),
     ]);
     wait_listening(port);
     std::thread::sleep(Duration::from_millis(1500));
-    let viewer = LateViewer::join(port);
+    // By now the run is at t ≈ 6; the history's viewer gets the rope then from t = 0, a
+    // shape every 2 time units, none missing; the live one gets pictures that replace
+    // themselves.
+    let history = LateViewer::join(port);
+    let live = LateViewer::join(port + 1);
     let mut rec = Recording::default();
-    // By now the run is at t ≈ 3; the viewer gets that history, then frames as they come.
-    let live = viewer.read_until(&mut rec, Duration::from_secs(20), |r| {
-        r.sim_times("rope/segments")
+    let got = history.read_until(&mut rec, Duration::from_secs(30), |r| {
+        r.sim_times("then/segments")
             .last()
-            .is_some_and(|&t| t > 6.0)
+            .is_some_and(|&t| t > 20.0)
     });
-    let times = rec.sim_times("rope/segments");
-    assert!(live, "latest frame at t = {:?}", times.last());
+    let times = rec.sim_times("then/segments");
+    assert!(got, "the rope then at {times:?}");
     assert_eq!(times.first().copied(), Some(0.0), "history from t = 0");
-    // 60 frames per time unit, none missing in between.
-    let expected = (times.last().unwrap() * 60.0).round() as usize + 1;
-    assert_eq!(times.len(), expected);
+    for (i, t) in times.iter().enumerate() {
+        assert!(
+            (t - 2.0 * i as f64).abs() < 0.02,
+            "a shape every 2 time units: {times:?}"
+        );
+    }
+    let mut now = Recording::default();
+    let pictures = live.read_until(&mut now, Duration::from_secs(10), |r| {
+        r.static_chunks("rope/segments") >= 10
+    });
+    assert!(
+        pictures,
+        "{} live pictures",
+        now.static_chunks("rope/segments")
+    );
+    assert_eq!(
+        now.temporal_rows("rope/segments"),
+        0,
+        "the live picture is static"
+    );
 
     let (status, took) = signal_and_wait(&mut server, "-TERM", Duration::from_secs(5));
     assert!(took < Duration::from_secs(1), "{took:?}");
     let stderr = stderr_of(&mut server);
     assert_eq!(status.code(), Some(130), "{stderr}");
     assert!(
-        stderr.contains("an endless run uses the chain method"),
+        stderr.contains("uses the midpoint method: it keeps the energy at every frame"),
         "{stderr}"
     );
 }

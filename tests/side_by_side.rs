@@ -208,31 +208,37 @@ fn bad_method_lists_are_refused_naming_the_flag() {
 }
 
 #[test]
-fn a_browser_side_by_side_is_sent_fewer_frames_than_a_file() {
+fn the_same_flags_give_the_same_steps_wherever_the_recording_goes() {
     use clap::Parser as _;
-    use rope::cli::{Cli, Command, SERVED_SIDE_BY_SIDE_RATE};
-    let rate = |extra: &[&str]| {
-        let mut args = vec!["rope", "run"];
+    use rope::cli::{Cli, Command};
+    let plans = |extra: &[&str]| {
+        let mut args = vec!["rope", "run", "--method", "seed,chain", "--angle", "60"];
+        args.extend_from_slice(&["--duration", "60"]);
         args.extend_from_slice(extra);
         match Cli::try_parse_from(&args).unwrap().command {
-            Command::Run(run) => run.log_rate(),
+            Command::Run(run) => run.plans().unwrap(),
             Command::Study(_) => unreachable!(),
         }
     };
-    // A browser keeps every frame: side by side it is sent fewer; a file, a native viewer
-    // and a single method keep their rates, and --log-rate always wins.
-    assert_eq!(
-        rate(&["--method", "seed,chain", "--web"]),
-        SERVED_SIDE_BY_SIDE_RATE
-    );
-    assert_eq!(
-        rate(&["--method", "seed,chain", "--serve-grpc", "127.0.0.1:9876"]),
-        SERVED_SIDE_BY_SIDE_RATE
-    );
-    assert_eq!(rate(&["--method", "seed,chain", "--save", "x.rrd"]), 30.0);
-    assert_eq!(rate(&["--method", "chain", "--web"]), 60.0);
-    assert_eq!(
-        rate(&["--method", "seed,chain", "--web", "--log-rate", "25"]),
-        25.0
+    let steps = |extra: &[&str]| -> Vec<(f64, f64)> {
+        plans(extra)[0]
+            .lanes()
+            .iter()
+            .map(|p| (p.dt, p.log_rate))
+            .collect()
+    };
+    // A viewer of a served run gets a live picture and a slow history whatever the frame
+    // rate, so the destination no longer sets the frames, nor the steps brought onto them.
+    let file = steps(&["--save", "x.rrd"]);
+    assert_eq!(steps(&["--web"]), file);
+    assert_eq!(steps(&["--serve-grpc", "127.0.0.1:9876"]), file);
+    assert_eq!(steps(&["--stdout"]), file);
+    assert_eq!(file.len(), 2);
+    assert!(file.iter().all(|&(_, rate)| rate == 30.0));
+    // --log-rate still sets the frames.
+    assert!(
+        steps(&["--web", "--log-rate", "25"])
+            .iter()
+            .all(|&(_, rate)| rate == 25.0)
     );
 }

@@ -40,9 +40,11 @@ impl MethodKind {
     /// The method of a finite run when none is named: the report's.
     pub const DEFAULT: MethodKind = MethodKind::Seed;
 
-    /// The method of an endless run (`--duration inf`) when none is named: one that stays
-    /// stable for ever (the seed scheme diverges after some tens of time units at any step).
-    pub const DEFAULT_ENDLESS: MethodKind = MethodKind::Chain;
+    /// The method of a run left running (endless, looping or served) when none is named:
+    /// the seed scheme diverges after some tens of time units at any step, the chain's
+    /// energy drifts down and `rattle`'s jumps at violent snaps; `midpoint` keeps the energy
+    /// at every frame, at about three quarters of the chain's cost per time unit.
+    pub const DEFAULT_LASTING: MethodKind = MethodKind::Midpoint;
 
     /// The method `rope study` computes its converged reference with: of a known, whole order
     /// in h (Richardson's extrapolation needs one) and with no stability limit to respect.
@@ -78,10 +80,11 @@ impl MethodKind {
         }
     }
 
-    /// The method chosen when none is named, for a run of `duration` time units.
-    pub fn default_for(duration: f64) -> MethodKind {
-        if duration.is_infinite() {
-            Self::DEFAULT_ENDLESS
+    /// The method chosen when none is named: for a run left running (`lasts`: endless,
+    /// looping or served), or for one that ends.
+    pub fn default_for(lasts: bool) -> MethodKind {
+        if lasts {
+            Self::DEFAULT_LASTING
         } else {
             Self::DEFAULT
         }

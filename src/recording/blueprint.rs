@@ -16,7 +16,28 @@ use rerun::blueprint::{
 /// side by side (`lanes`, a plan each), their ropes share the rope view, each named at its
 /// tip, and the energy panel gives way to their distance from the most accurate one's string.
 pub fn blueprint(headline: Option<&str>, lanes: &[RunPlan]) -> Blueprint {
-    let plots = match lanes {
+    Blueprint::new(
+        Horizontal::new([
+            rope_view(headline).into(),
+            tension_profile_view().into(),
+            plots(lanes).into(),
+        ])
+        .with_column_shares([4.0, 3.0, 4.0]),
+    )
+    .with_auto_views(false)
+    .with_blueprint_panel(BlueprintPanel::from_state(PanelState::Collapsed))
+    .with_selection_panel(SelectionPanel::from_state(PanelState::Collapsed))
+    .with_time_panel(
+        TimePanel::new()
+            .with_timeline(SIM_TIME)
+            .with_state(PanelState::Expanded),
+    )
+}
+
+/// The plots: energy (side by side, the disagreement), its deviation, the error estimate,
+/// and the diagnostics' tabs.
+fn plots(lanes: &[RunPlan]) -> Vertical {
+    match lanes {
         [_, _, ..] => Vertical::new([
             deviation_view().into(),
             disagreement_view(lanes).into(),
@@ -29,12 +50,23 @@ pub fn blueprint(headline: Option<&str>, lanes: &[RunPlan]) -> Blueprint {
             error_view().into(),
             diagnostics(false).into(),
         ]),
-    };
+    }
+}
+
+/// The layout for viewers of a run that never ends: the live rope, and under the tension
+/// profile the rope "then", at the time cursor, from the history kept every
+/// `shape_interval` time units; the plots as for a run of every frame.
+pub fn live(headline: Option<&str>, lanes: &[RunPlan], shape_interval: f64) -> Blueprint {
     Blueprint::new(
         Horizontal::new([
-            rope_view(headline).into(),
-            tension_profile_view().into(),
-            plots.into(),
+            live_rope_view(headline).into(),
+            Vertical::new([
+                then_rope_view(shape_interval).into(),
+                tension_profile_view().into(),
+            ])
+            .with_row_shares([3.0, 2.0])
+            .into(),
+            plots(lanes).into(),
         ])
         .with_column_shares([4.0, 3.0, 4.0]),
     )
@@ -46,6 +78,30 @@ pub fn blueprint(headline: Option<&str>, lanes: &[RunPlan]) -> Blueprint {
             .with_timeline(SIM_TIME)
             .with_state(PanelState::Expanded),
     )
+}
+
+/// The live rope: it replaces itself at every frame, whatever the time cursor says.
+fn live_rope_view(headline: Option<&str>) -> Spatial2DView {
+    let title = match headline {
+        Some(headline) => format!("Rope now (live): {headline}"),
+        None => "Rope now (live, coloured by tension)".to_owned(),
+    };
+    Spatial2DView::new(title).with_origin("rope")
+}
+
+/// The rope at the time cursor, from the history: scrub the timeline to see it then.
+fn then_rope_view(shape_interval: f64) -> Spatial2DView {
+    Spatial2DView::new(format!(
+        "Rope then: at the time cursor (kept every {} time units; scrub the timeline)",
+        trim(shape_interval)
+    ))
+    .with_origin("then")
+}
+
+/// A number as short as it reads: 1, 0.5, 2.5.
+fn trim(x: f64) -> String {
+    let text = format!("{x:.3}");
+    text.trim_end_matches('0').trim_end_matches('.').to_owned()
 }
 
 /// The rope, coloured by tension, with its support, tip, trail and colour scale; the title

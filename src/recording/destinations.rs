@@ -7,7 +7,8 @@
 //! a viewer has gone.
 
 use super::error::OutputError;
-use super::viewer_sinks::{ServedSink, ViewerLink, ViewerSink};
+use super::live::HistoryRates;
+use super::viewer_sinks::{LiveDropped, LiveSink, ServedSink, ViewerLink, ViewerSink};
 use rerun::RecordingStream;
 use rerun::blueprint::Blueprint;
 use rerun::sink::LogSink;
@@ -72,6 +73,13 @@ pub struct OutputArgs {
     #[arg(long, value_name = "SIZE", default_value = DEFAULT_SERVER_MEMORY_LIMIT, value_parser = parse_memory_limit, requires = "served")]
     pub server_memory_limit: ServerMemoryLimit,
 
+    /// For viewers of a served, endless or looping run, which get a live picture and a
+    /// history: rows of the time series the history keeps per time unit; the rope's shape
+    /// is kept at a third of that rate. The run prints how long a browser page can stay open
+    /// at this rate. A --save file keeps every frame whatever this says.
+    #[arg(long, value_name = "ROWS", default_value_t = HistoryRates::DEFAULT.series_per_unit, value_parser = parse_history_rate)]
+    pub history_rate: f64,
+
     /// Write the recording to FILE.rrd (as well as to a viewer, if one is named).
     #[arg(long, value_name = "FILE.rrd")]
     pub save: Option<PathBuf>,
@@ -81,58 +89,156 @@ pub struct OutputArgs {
     pub stdout: bool,
 }
 
-/// An open recording and what is attached to it.
+/// What a run logs into: a recording that keeps every frame, or, for viewers of a run that
+/// never ends, two streams of one recording (see [`super::live`]).
+pub enum Recording {
+    Everything(RecordingStream),
+    Live {
+        history: RecordingStream,
+        live: RecordingStream,
+    },
+}
+
+/// The blueprints a run's recordings open with: one for a recording of every frame, one for
+/// a live picture beside its history.
+pub struct Layouts {
+    pub everything: Blueprint,
+    pub live: Blueprint,
+}
+
+/// Open recordings and what is attached to them.
 pub struct Output {
-    pub rec: RecordingStream,
+    /// A file (or stdout) and every viewer: one recording of every frame; or, for viewers of
+    /// a run that never ends, their live picture and history, and the file's recording of
+    /// every frame beside them.
+    pub recordings: Vec<Recording>,
     /// The viewer streamed to (spawned or connected), to watch for its loss.
     pub viewer: Option<ViewerLink>,
-    /// Where viewers can join, when serving.
+    /// Where viewers can join, when serving: the history's endpoint, and the live
+    /// picture's when it has one of its own.
     pub serving: Option<String>,
+    pub serving_live: Option<String>,
     /// Whether the recording outlives a lost viewer (a file or a served endpoint is kept).
     pub survives_viewer_loss: bool,
     /// The web viewer's page, with the stream's address in it, when `--web` serves one.
     pub web_page: Option<String>,
+    /// Live pictures not sent because a served viewer was behind.
+    pub live_dropped: Option<LiveDropped>,
     /// The web viewer's HTTP server: it serves for as long as this is kept.
     _web_server: Option<Box<dyn std::any::Any>>,
 }
 
 impl OutputArgs {
-    /// Opens every destination named (or spawns a viewer when none is) and a recording that
-    /// sends to all of them.
+    /// What the history of viewers of a run that never ends keeps.
+    pub fn history_rates(&self) -> HistoryRates {
+        HistoryRates::at(self.history_rate)
+    }
+
+    /// Whether viewers get a live picture and a history rather than every frame: for a run
+    /// that is served, or that never ends (`endless`) and has a viewer.
+    pub fn live(&self, endless: bool) -> bool {
+        self.served_at().is_some()
+            || (endless && (self.connect.is_some() || self.spawn || self.nothing_named()))
+    }
+
+    /// Opens every destination named (or spawns a viewer when none is) and the recordings
+    /// that send to them; `endless`: the run never ends by itself (`--duration inf`,
+    /// `--loop`).
     pub fn open(
+        &self,
+        application_id: &'static str,
+        layouts: Layouts,
+        endless: bool,
+    ) -> Result<Output, OutputError> {
+        if !self.live(endless) {
+            return self.open_everything(application_id, layouts.everything);
+        }
+        let files = self.file_sinks()?;
+        let survives_viewer_loss = !files.is_empty() || self.served_at().is_some();
+        let mut history: Vec<Box<dyn LogSink>> = Vec::new();
+        let mut live: Vec<Box<dyn LogSink>> = Vec::new();
+        let viewer = self.viewer(survives_viewer_loss, &mut history)?;
+        if let Some(link) = &viewer
+            && link.lost().is_none()
+        {
+            // The same viewer, over a connection of its own that shares the history's link.
+            live.push(Box::new(ViewerSink::connect_beside(link)?));
+        }
+        let (mut serving, mut serving_live, mut live_dropped) = (None, None, None);
+        let (mut web_page, mut web_server) = (None, None);
+        if let Some(addr) = self.served_at() {
+            history.push(Box::new(ServedSink::new(
+                self.serve(addr, history_limit(self.server_memory_limit.limit))?,
+            )));
+            let live_addr = SocketAddr::new(addr.ip(), addr.port().wrapping_add(1));
+            let sink = LiveSink::new(self.serve(live_addr, rerun::MemoryLimit::from_bytes(0))?)
+                .map_err(OutputError::Thread)?;
+            live_dropped = Some(sink.dropped());
+            live.push(Box::new(sink));
+            let urls = [addr, live_addr].map(|a| format!("rerun+http://{a}/proxy"));
+            if let Some(web) = self.web {
+                let (page, server) = self.host_web_viewer(web, &urls)?;
+                web_page = Some(page);
+                web_server = Some(server);
+            }
+            let [history_url, live_url] = urls;
+            serving = Some(history_url);
+            serving_live = Some(live_url);
+        }
+        let id = fresh_recording_id();
+        let history = rerun::RecordingStreamBuilder::new(application_id)
+            .recording_id(id.clone())
+            .with_blueprint(layouts.live)
+            .batcher_config(rerun::log::ChunkBatcherConfig::LOW_LATENCY)
+            .set_sinks(history)?;
+        let live = rerun::RecordingStreamBuilder::new(application_id)
+            .recording_id(id)
+            .batcher_config(rerun::log::ChunkBatcherConfig::LOW_LATENCY)
+            .set_sinks(live)?;
+        let mut recordings = vec![Recording::Live { history, live }];
+        if !files.is_empty() {
+            let file = rerun::RecordingStreamBuilder::new(application_id)
+                .with_blueprint(layouts.everything)
+                .set_sinks(files)?;
+            recordings.insert(0, Recording::Everything(file));
+        }
+        Ok(Output {
+            recordings,
+            viewer,
+            serving,
+            serving_live,
+            survives_viewer_loss,
+            web_page,
+            live_dropped,
+            _web_server: web_server,
+        })
+    }
+
+    /// One recording of every frame, sent to every destination.
+    fn open_everything(
         &self,
         application_id: &'static str,
         blueprint: Blueprint,
     ) -> Result<Output, OutputError> {
         let mut sinks = self.file_sinks()?;
-        let survives_viewer_loss = self.save.is_some() || self.served_at().is_some();
+        let survives_viewer_loss = self.save.is_some();
         let viewer = self.viewer(survives_viewer_loss, &mut sinks)?;
-        let mut serving = None;
-        let (mut web_page, mut web_server) = (None, None);
-        if let Some(addr) = self.served_at() {
-            sinks.push(Box::new(ServedSink::new(self.serve(addr)?)));
-            let url = format!("rerun+http://{addr}/proxy");
-            if let Some(web) = self.web {
-                let (page, server) = self.host_web_viewer(web, &url)?;
-                web_page = Some(page);
-                web_server = Some(server);
-            }
-            serving = Some(url);
-        }
         let mut builder =
             rerun::RecordingStreamBuilder::new(application_id).with_blueprint(blueprint);
-        if viewer.is_some() || serving.is_some() {
+        if viewer.is_some() {
             // Live viewers want data as it happens, not in the file sink's larger batches.
             builder = builder.batcher_config(rerun::log::ChunkBatcherConfig::LOW_LATENCY);
         }
         let rec = builder.set_sinks(sinks)?;
         Ok(Output {
-            rec,
+            recordings: vec![Recording::Everything(rec)],
             viewer,
-            serving,
+            serving: None,
+            serving_live: None,
             survives_viewer_loss,
-            web_page,
-            _web_server: web_server,
+            web_page: None,
+            live_dropped: None,
+            _web_server: None,
         })
     }
 
@@ -148,19 +254,23 @@ impl OutputArgs {
     fn host_web_viewer(
         &self,
         addr: SocketAddr,
-        stream: &str,
+        streams: &[String],
     ) -> Result<(String, Box<dyn std::any::Any>), OutputError> {
         let refuse = |reason| OutputError::WebAddress { addr, reason };
         std::net::TcpListener::bind(addr).map_err(refuse)?;
         let server = rerun::serve_web_viewer(rerun::web_viewer::WebViewerConfig {
             bind_ip: addr.ip().to_string(),
             web_port: addr.port().into(),
-            connect_to: vec![stream.to_owned()],
+            connect_to: streams.to_vec(),
             open_browser: !self.no_browser && a_browser_can_open(),
             ..Default::default()
         })
         .map_err(|err| refuse(std::io::Error::other(err.to_string())))?;
-        let page = format!("{}/?url={}", server.server_url(), url_encoded(stream));
+        let query: Vec<String> = streams
+            .iter()
+            .map(|s| format!("url={}", url_encoded(s)))
+            .collect();
+        let page = format!("{}/?{}", server.server_url(), query.join("&"));
         Ok((page, Box::new(server)))
     }
 
@@ -225,12 +335,16 @@ impl OutputArgs {
         !self.stdout && self.save.is_none() && self.connect.is_none() && self.served_at().is_none()
     }
 
-    /// Hosts the gRPC endpoint, after checking that its address is free (Rerun's server
-    /// would only log a bind failure on its own thread, and the run would go on unseen).
-    fn serve(&self, addr: SocketAddr) -> Result<rerun::grpc_server::GrpcServerSink, OutputError> {
+    /// Hosts a gRPC endpoint that keeps `memory_limit` of history for late viewers, after
+    /// checking that its address is free (Rerun's server would only log a bind failure on
+    /// its own thread, and the run would go on unseen).
+    fn serve(
+        &self,
+        addr: SocketAddr,
+        memory_limit: rerun::MemoryLimit,
+    ) -> Result<rerun::grpc_server::GrpcServerSink, OutputError> {
         std::net::TcpListener::bind(addr)
             .map_err(|reason| OutputError::ServeAddress { addr, reason })?;
-        let memory_limit = history_limit(self.server_memory_limit.limit);
         let ip = match addr.ip() {
             IpAddr::V4(ip) => ip.to_string(),
             IpAddr::V6(ip) => format!("[{ip}]"),
@@ -282,6 +396,15 @@ fn url_encoded(text: &str) -> String {
             _ => format!("%{b:02X}"),
         })
         .collect()
+}
+
+/// A recording id for the two streams of one recording (a live picture and its history),
+/// unique to this process and moment.
+fn fresh_recording_id() -> String {
+    let nanos = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_nanos());
+    format!("rope-{}-{nanos}", std::process::id())
 }
 
 /// How long Rerun's server may take to start listening.
@@ -375,6 +498,16 @@ fn parse_addr(text: &str, default_port: u16) -> Result<SocketAddr, String> {
     Err(format!(
         "{text:?} is not an address; give IP:PORT (127.0.0.1:9876), an IP (0.0.0.0 for every interface) or a PORT"
     ))
+}
+
+/// `--history-rate ROWS`: a positive, finite number of rows per time unit.
+fn parse_history_rate(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(rate) if rate.is_finite() && rate > 0.0 && rate <= 1e4 => Ok(rate),
+        _ => Err(format!(
+            "{text}: give the rows of time series kept per time unit, a number above 0 (1.5 keeps about 9 days in a browser page; at most 10000)"
+        )),
+    }
 }
 
 /// `--server-memory-limit SIZE`: the limit, and the words the user gave it in.

@@ -47,6 +47,15 @@ pub mod path {
     /// string (the entity paths of each method end in `/{method}`).
     pub const DISAGREEMENT: &str = "disagreement";
     pub const LOG_DISAGREEMENT: &str = "log10/disagreement";
+    /// The history's rope, for viewers of a run that never ends: its shape at the time
+    /// cursor ("then"), beside the live one, which replaces itself.
+    pub const THEN_SEGMENTS: &str = "then/segments";
+    pub const THEN_SUPPORT: &str = "then/support";
+    pub const THEN_TIP: &str = "then/tip";
+    /// Side by side: every method's tip then.
+    pub const THEN_TIPS: &str = "then/tips";
+    /// A line spanning the swing, so that the "then" view frames it as the live one does.
+    pub const THEN_FRAME: &str = "then/frame";
     pub const EVENTS: &str = "events";
     pub const PARAMETERS: &str = "parameters";
 }
@@ -169,6 +178,11 @@ pub const SIDE_BY_SIDE: [&str; 7] = [
     path::LOG_DISAGREEMENT,
     path::CONSTRAINT_RESIDUAL,
 ];
+
+/// The time series a history beside a live picture leaves out: the raw values whose decimal
+/// logarithms the plots show.
+pub const HISTORY_LEAVES_OUT: [&str; 3] =
+    [path::DEVIATION, path::TIP_ESTIMATE, path::SHAPE_ESTIMATE];
 
 /// A frame's distance from the most accurate method's string, if it has one.
 fn disagreement(f: &Frame) -> f64 {

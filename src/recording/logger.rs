@@ -3,9 +3,10 @@
 //! equations: it draws what a [`Frame`] holds.
 
 use super::colour::{SHADE, shaded_strips, tension_colour};
+use super::entities::{HISTORY_LEAVES_OUT, SIM_TIME, STEP, path};
 use super::entities::{SERIES, SIDE_BY_SIDE, log10_abs};
-use super::entities::{SIM_TIME, STEP, path};
 use super::error::RecordingError;
+use super::live::{HistoryRates, Keeping, LivePicture};
 use crate::error::Diverged;
 use crate::model::Point;
 use crate::run::{Frame, FrameSink, RunPlan};
@@ -39,8 +40,11 @@ struct LaneLog {
     series: Vec<SeriesRow>,
     /// Every how many frames a row of time series is kept: 1 alone; side by side, enough to
     /// keep [`SIDE_BY_SIDE_SERIES_RATE`] rows per time unit (the plots redraw their whole
-    /// history every frame, and a browser on a small machine could not keep up with more).
+    /// history every frame, and a browser on a small machine could not keep up with more);
+    /// for a history, its own rate, if that is lower.
     series_stride: u64,
+    /// Whether only the series a history keeps are sent.
+    history: bool,
     /// Frames of this lane seen so far.
     frames_seen: u64,
 }
@@ -49,19 +53,27 @@ struct LaneLog {
 const SIDE_BY_SIDE_SERIES_RATE: f64 = 10.0;
 
 impl LaneLog {
-    /// The one lane of a run of one method.
-    fn alone() -> Self {
-        Self::new(None, "", [0, 0, 0], 1)
+    /// The one lane of a run of one method (`plan` none before the first run).
+    fn alone(plan: Option<&RunPlan>, keeping: Keeping) -> Self {
+        let stride = match (keeping, plan) {
+            (Keeping::History(rates), Some(plan)) => rates.series_stride(plan.log_rate),
+            _ => 1,
+        };
+        Self::new(None, "", [0, 0, 0], stride, keeping)
     }
 
     /// The lane of the method at `index` among several side by side.
-    fn of(index: usize, plan: &RunPlan) -> Self {
-        let stride = (plan.log_rate / SIDE_BY_SIDE_SERIES_RATE).ceil().max(1.0) as u64;
+    fn of(index: usize, plan: &RunPlan, keeping: Keeping) -> Self {
+        let mut stride = (plan.log_rate / SIDE_BY_SIDE_SERIES_RATE).ceil().max(1.0) as u64;
+        if let Keeping::History(rates) = keeping {
+            stride = stride.max(rates.series_stride(plan.log_rate));
+        }
         Self::new(
             Some(index),
             plan.method.name(),
             plan.method.descriptor().colours.1,
             stride,
+            keeping,
         )
     }
 
@@ -70,6 +82,7 @@ impl LaneLog {
         name: &'static str,
         [r, g, b]: [u8; 3],
         series_stride: u64,
+        keeping: Keeping,
     ) -> Self {
         Self {
             index,
@@ -79,6 +92,7 @@ impl LaneLog {
             trail: VecDeque::with_capacity(TRAIL_FRAMES),
             series: Vec::with_capacity(BATCH_SERIES_CAPACITY),
             series_stride,
+            history: keeping != Keeping::Everything,
             frames_seen: 0,
         }
     }
@@ -90,7 +104,10 @@ impl LaneLog {
 
     /// Whether this lane sends the time series of `entity`.
     fn sends(&self, entity: &str) -> bool {
-        self.index.is_none() || SIDE_BY_SIDE.contains(&entity)
+        match self.index {
+            None => !(self.history && HISTORY_LEAVES_OUT.contains(&entity)),
+            Some(_) => SIDE_BY_SIDE.contains(&entity),
+        }
     }
 
     /// Whether `frame` is of this lane.
@@ -133,7 +150,19 @@ fn timelines(
 /// Streams frames of runs into a recording. Runs follow one another on the timelines: each
 /// starts where the one before it ended (`--loop`), so one recording holds them all.
 pub struct RopeLogger {
+    /// The timelines: every frame, or the history beside a live picture.
     rec: RecordingStream,
+    keeping: Keeping,
+    /// The picture that replaces itself, for viewers of a run that never ends.
+    live: Option<LivePicture>,
+    /// Where on `sim_time` the history keeps its next shape of the rope.
+    next_shape: f64,
+    /// The history's shapes not yet sent.
+    then: Vec<ThenShape>,
+    /// Where on `sim_time` the history next sends what it gathered.
+    next_send: f64,
+    /// What is running: the caption over the live rope.
+    headline: String,
     /// One per method of the current run.
     lanes: Vec<LaneLog>,
     series_sent: Instant,
@@ -142,12 +171,73 @@ pub struct RopeLogger {
     step_offset: u64,
     /// The current run's `--tolerance`, drawn beside the estimate.
     tolerance: Option<f64>,
+    /// Added to every run's parameters.
+    parameters_note: Option<String>,
 }
 
 impl RopeLogger {
-    /// Logs what never changes: the support, the colour scale, and the series' names and
-    /// colours.
+    /// A recording of every frame: logs what never changes (the support, the colour scale,
+    /// and the series' names and colours).
     pub fn new(rec: RecordingStream) -> rerun::RecordingStreamResult<Self> {
+        Self::keeping(rec, Keeping::Everything, None)
+    }
+
+    /// A live picture into `live` and a history at `rates` into `history`: two streams of
+    /// one recording, for viewers of a run that never ends (see [`super::live`]).
+    pub fn live(
+        history: RecordingStream,
+        live: RecordingStream,
+        rates: HistoryRates,
+    ) -> rerun::RecordingStreamResult<Self> {
+        let logger = Self::keeping(
+            history,
+            Keeping::History(rates),
+            Some(LivePicture::new(live)),
+        )?;
+        Self::log_then_styling(&logger.rec)?;
+        Ok(logger)
+    }
+
+    /// The "then" rope's styling: thinner and paler than the live one, its tip labelled
+    /// with its time.
+    fn log_then_styling(rec: &RecordingStream) -> rerun::RecordingStreamResult<()> {
+        rec.log_static(
+            path::THEN_SUPPORT,
+            &rerun::Points2D::new([[0.0f32, 0.0]])
+                .with_radii([0.02])
+                .with_colors([rerun::Color::from_rgb(90, 90, 90)]),
+        )?;
+        rec.log_static(
+            path::THEN_SEGMENTS,
+            &rerun::LineStrips2D::update_fields().with_radii([ROPE_RADIUS]),
+        )?;
+        rec.log_static(
+            path::THEN_TIP,
+            &rerun::Points2D::update_fields()
+                .with_radii([0.015])
+                .with_colors([rerun::Color::from_rgb(20, 20, 20)])
+                .with_show_labels(true),
+        )?;
+        rec.log_static(
+            path::THEN_TIPS,
+            &rerun::Points2D::update_fields()
+                .with_radii([0.018])
+                .with_show_labels(true),
+        )?;
+        // Spans the swing, as the live view's colour bar does, so the two views match.
+        rec.log_static(
+            path::THEN_FRAME,
+            &rerun::LineStrips2D::new([[[-1.0f32, 1.12], [1.0, 1.12]]])
+                .with_radii([0.002])
+                .with_colors([rerun::Color::from_unmultiplied_rgba(160, 160, 160, 140)]),
+        )
+    }
+
+    fn keeping(
+        rec: RecordingStream,
+        keeping: Keeping,
+        live: Option<LivePicture>,
+    ) -> rerun::RecordingStreamResult<Self> {
         rec.log_static(
             path::SUPPORT,
             &rerun::Points2D::new([[0.0f32, 0.0]])
@@ -220,11 +310,18 @@ impl RopeLogger {
         }
         Ok(Self {
             rec,
-            lanes: vec![LaneLog::alone()],
+            keeping,
+            live,
+            next_shape: 0.0,
+            then: Vec::new(),
+            next_send: HISTORY_SEND_UNITS,
+            headline: String::new(),
+            lanes: vec![LaneLog::alone(None, keeping)],
             series_sent: Instant::now(),
             time_offset: 0.0,
             step_offset: 0,
             tolerance: None,
+            parameters_note: None,
         })
     }
 
@@ -286,31 +383,29 @@ impl RopeLogger {
     }
 
     /// The `sim_time` and `step` columns of `frames`, placed after the runs before.
-    fn frame_times(&self, frames: &[&Frame]) -> [rerun::TimeColumn; 2] {
+    fn frame_times(&self, frames: &[&Frame]) -> Vec<rerun::TimeColumn> {
         let (time_offset, step_offset) = (self.time_offset, self.step_offset);
         timelines(
             frames.iter().map(|f| time_offset + f.time),
             frames.iter().map(|f| (step_offset + f.step) as i64),
         )
+        .into()
     }
 
-    /// Logs a batch of frames, in order, on the `sim_time` and `step` timelines: one row per
-    /// frame and entity, sent as columns (one chunk per entity for the whole batch, far
-    /// cheaper than a log call per frame and entity).
+    /// Logs a batch of frames, in order: on the `sim_time` and `step` timelines every frame,
+    /// or the history's share of them, sent as columns (one chunk per entity for the whole
+    /// batch, far cheaper than a log call per frame and entity); and the last one as the
+    /// live picture, when one is due.
     pub fn log_frames(&mut self, frames: &[Frame]) -> rerun::RecordingStreamResult<()> {
-        let side_by_side = self.lanes.len() > 1;
-        if side_by_side {
+        if self.lanes.len() > 1 {
             self.log_shared_shapes(frames)?;
+        } else {
+            self.log_shapes(frames)?;
         }
         for lane in 0..self.lanes.len() {
             let mine: Vec<&Frame> = frames.iter().filter(|f| self.lanes[lane].owns(f)).collect();
             if mine.is_empty() {
                 continue;
-            }
-            if !side_by_side {
-                self.log_rope(lane, &mine)?;
-                self.log_tip_and_trail(lane, &mine)?;
-                self.log_tension_profile(lane, &mine)?;
             }
             self.log_tolerance_passed(lane, &mine)?;
             self.gather_series(lane, &mine);
@@ -320,8 +415,156 @@ impl RopeLogger {
             1 => (SERIES_FRAMES, SERIES_WAIT),
             lanes => (SIDE_BY_SIDE_SERIES_FRAMES * lanes, SIDE_BY_SIDE_SERIES_WAIT),
         };
-        if gathered >= most || self.series_sent.elapsed() >= wait {
+        let due = match self.keeping {
+            Keeping::Everything => gathered >= most || self.series_sent.elapsed() >= wait,
+            // A history's rows are few: gathered over [`HISTORY_SEND_UNITS`] of simulated
+            // time, they make a few large chunks, the same whatever the run's speed.
+            Keeping::History(_) => match frames.last().map(|f| self.time_offset + f.time) {
+                Some(t) if t >= self.next_send => {
+                    let sends = (t / HISTORY_SEND_UNITS + 1e-9).floor() + 1.0;
+                    self.next_send = sends * HISTORY_SEND_UNITS;
+                    true
+                }
+                _ => false,
+            },
+        };
+        if due {
             self.send_series()?;
+        }
+        Ok(())
+    }
+
+    /// Which of `times` (on the timeline) the history keeps the rope's shape at: the first at
+    /// or past each multiple of its interval.
+    fn kept_shapes(&mut self, times: impl IntoIterator<Item = f64>) -> Vec<usize> {
+        let Keeping::History(rates) = self.keeping else {
+            return Vec::new();
+        };
+        let interval = rates.shape_interval();
+        let mut kept = Vec::new();
+        for (i, t) in times.into_iter().enumerate() {
+            if t >= self.next_shape - 1e-9 * interval {
+                kept.push(i);
+                self.next_shape = ((t / interval + 1e-9).floor() + 1.0) * interval;
+            }
+        }
+        kept
+    }
+
+    /// A run of one method: its rope, tip, trail and tension profile at every frame, or
+    /// the history's shapes and the live picture.
+    fn log_shapes(&mut self, frames: &[Frame]) -> rerun::RecordingStreamResult<()> {
+        let frames: Vec<&Frame> = frames.iter().collect();
+        let Some(&last) = frames.last() else {
+            return Ok(());
+        };
+        let tips: Vec<[f32; 2]> = frames.iter().map(|f| xy(&f.tip())).collect();
+        let everything = self.keeping == Keeping::Everything;
+        let trails = advance_trail(&mut self.lanes[0].trail, &tips, everything);
+        if everything {
+            let times = self.frame_times(&frames);
+            send_rope(&self.rec, path::SEGMENTS, &frames, times.clone())?;
+            send_tips(&self.rec, path::TIP, tips, times.clone())?;
+            send_trails(&self.rec, path::TRAIL, trails, times.clone())?;
+            send_profiles(&self.rec, path::PROFILE, &frames, times)?;
+        } else {
+            let offset = self.time_offset;
+            let kept = self.kept_shapes(frames.iter().map(|f| offset + f.time));
+            self.then.extend(kept.into_iter().map(|i| ThenShape {
+                time: offset + frames[i].time,
+                step: (self.step_offset + frames[i].step) as i64,
+                frames: vec![frames[i].clone()],
+            }));
+        }
+        if self.live.as_mut().is_some_and(LivePicture::due)
+            && let Some(live) = &self.live
+        {
+            let trail = self.lanes[0].trail.iter().copied().collect();
+            let rec = &live.rec;
+            send_rope(rec, path::SEGMENTS, &[last], Vec::new())?;
+            send_tips(rec, path::TIP, vec![xy(&last.tip())], Vec::new())?;
+            send_trails(rec, path::TRAIL, vec![trail], Vec::new())?;
+            send_profiles(rec, path::PROFILE, &[last], Vec::new())?;
+            self.log_live_caption(self.time_offset + last.time)?;
+        }
+        Ok(())
+    }
+
+    /// The live caption: what is running, and the time it has reached.
+    fn log_live_caption(&mut self, time: f64) -> rerun::RecordingStreamResult<()> {
+        let Some(live) = &mut self.live else {
+            return Ok(());
+        };
+        if !live.caption_due() {
+            return Ok(());
+        }
+        live.rec.log_static(
+            path::CAPTION,
+            &rerun::Points2D::update_fields()
+                .with_labels([format!("{} · live, t = {time:.1}", self.headline)]),
+        )
+    }
+
+    /// Several methods side by side: each instant's ropes, tips and tension profiles as one
+    /// row of three entities shared by the methods (a method that stopped is no longer in
+    /// them). A browser's viewer keeps every chunk it is sent, each with its own schema and
+    /// index: three entities an instant instead of three per method, and the ropes in
+    /// [`SHADE`]s of tension (a strip per run of one shade, about half the points), make
+    /// what it keeps grow about a quarter as fast. A history keeps its share of the
+    /// instants under `then/` (no profiles), and the live picture the last one.
+    fn log_shared_shapes(&mut self, frames: &[Frame]) -> rerun::RecordingStreamResult<()> {
+        // The frames of one instant come together, in the methods' order.
+        let mut instants: Vec<Vec<&Frame>> = Vec::new();
+        let mut last_lane = None;
+        for f in frames {
+            let lane = f.lane.map(|l| l.index);
+            match instants.last_mut() {
+                Some(instant) if lane > last_lane => instant.push(f),
+                _ => instants.push(vec![f]),
+            }
+            last_lane = lane;
+        }
+        let offset = self.time_offset;
+        let step_offset = self.step_offset;
+        let kept = self.kept_shapes(instants.iter().map(|i| offset + i[0].time));
+        self.then.extend(kept.into_iter().map(|i| ThenShape {
+            time: offset + instants[i][0].time,
+            step: (step_offset + instants[i][0].step) as i64,
+            frames: instants[i].iter().map(|&f| f.clone()).collect(),
+        }));
+        let kept = match self.keeping {
+            Keeping::Everything => instants.clone(),
+            Keeping::History(_) => Vec::new(),
+        };
+        let live_due = self.live.as_mut().is_some_and(LivePicture::due);
+        let lane_of = |f: &Frame| {
+            self.lanes
+                .iter()
+                .find(|l| l.owns(f))
+                .map_or((rerun::Color::from_rgb(20, 20, 20), ""), |l| {
+                    (l.colour, l.name)
+                })
+        };
+        let times = |instants: &[Vec<&Frame>]| {
+            vec![rerun::TimeColumn::new_duration_secs(
+                SIM_TIME,
+                instants.iter().map(|i| offset + i[0].time),
+            )]
+        };
+        let shared = [path::SEGMENTS, path::TIPS, path::PROFILES];
+        if !kept.is_empty() {
+            SharedShapes::of(&kept, lane_of).send(&self.rec, shared, times(&kept))?;
+        }
+        if live_due && let (Some(live), Some(now)) = (&self.live, instants.last()) {
+            // Static: one instant, which replaces the one before.
+            SharedShapes::of(std::slice::from_ref(now), lane_of).send(
+                &live.rec,
+                shared,
+                Vec::new(),
+            )?;
+        }
+        if live_due && let Some(now) = instants.last() {
+            self.log_live_caption(offset + now[0].time)?;
         }
         Ok(())
     }
@@ -366,154 +609,45 @@ impl RopeLogger {
         Ok(())
     }
 
-    /// The rope: one 2-point strip per segment, coloured by its tension.
-    fn log_rope(&self, lane: usize, frames: &[&Frame]) -> rerun::RecordingStreamResult<()> {
-        let mut strips = Vec::new();
-        let mut colours = Vec::new();
-        let mut lengths = Vec::with_capacity(frames.len());
-        for f in frames {
-            lengths.push(f.tension.len());
-            strips.extend(f.nodes.windows(2).map(|w| [xy(&w[0]), xy(&w[1])]));
-            colours.extend(f.tension.iter().map(|&t| tension_colour(t)));
+    /// Sends the history's shapes of the rope gathered so far, and sets when the history
+    /// sends next.
+    fn send_then(&mut self) -> rerun::RecordingStreamResult<()> {
+        if self.then.is_empty() {
+            return Ok(());
         }
-        self.rec.send_columns(
-            self.lanes[lane].at(path::SEGMENTS),
-            self.frame_times(frames),
-            rerun::LineStrips2D::update_fields()
-                .with_strips(strips)
-                .with_colors(colours)
-                .columns(lengths)?,
-        )
-    }
-
-    /// Several methods side by side: each instant's ropes, tips and tension profiles as one
-    /// row of three entities shared by the methods (a method that stopped is no longer in
-    /// them). A browser's viewer keeps every chunk it is sent, each with its own schema and
-    /// index: three entities an instant instead of three per method, and the ropes in
-    /// [`SHADE`]s of tension (a strip per run of one shade, about half the points), make
-    /// what it keeps grow about a quarter as fast.
-    fn log_shared_shapes(&self, frames: &[Frame]) -> rerun::RecordingStreamResult<()> {
-        // The frames of one instant come together, in the methods' order.
-        let mut instants: Vec<Vec<&Frame>> = Vec::new();
-        let mut last_lane = None;
-        for f in frames {
-            let lane = f.lane.map(|l| l.index);
-            match instants.last_mut() {
-                Some(instant) if lane > last_lane => instant.push(f),
-                _ => instants.push(vec![f]),
-            }
-            last_lane = lane;
-        }
-        let lane_of = |f: &Frame| {
-            self.lanes
+        let then = std::mem::take(&mut self.then);
+        let times = timelines(then.iter().map(|t| t.time), then.iter().map(|t| t.step));
+        let instants: Vec<Vec<&Frame>> = then.iter().map(|t| t.frames.iter().collect()).collect();
+        let lanes = &self.lanes;
+        let shapes = SharedShapes::of(&instants, |f: &Frame| {
+            lanes
                 .iter()
                 .find(|l| l.owns(f))
                 .map_or((rerun::Color::from_rgb(20, 20, 20), ""), |l| {
                     (l.colour, l.name)
                 })
-        };
-        let (mut ropes, mut rope_colours, mut rope_lengths) = (Vec::new(), Vec::new(), Vec::new());
-        let (mut tips, mut tip_colours, mut names) = (Vec::new(), Vec::new(), Vec::new());
-        let (mut profiles, mut profile_colours) = (Vec::new(), Vec::new());
-        let mut per_instant = Vec::with_capacity(instants.len());
-        for instant in &instants {
-            let before = ropes.len();
-            for f in instant {
-                let nodes: Vec<[f32; 2]> = f.nodes.iter().map(xy).collect();
-                let (strips, colours) = shaded_strips(&nodes, &f.tension, SHADE);
-                ropes.extend(strips);
-                rope_colours.extend(colours);
-                let (colour, name) = lane_of(f);
-                tips.push(xy(&f.tip()));
-                tip_colours.push(colour);
-                names.push(name);
-                profiles.push(profile(f));
-                profile_colours.push(colour);
-            }
-            rope_lengths.push(ropes.len() - before);
-            per_instant.push(instant.len());
+        });
+        if lanes.len() > 1 {
+            return shapes.send(
+                &self.rec,
+                [path::THEN_SEGMENTS, path::THEN_TIPS, ""],
+                times.into(),
+            );
         }
-        let times = || {
-            [rerun::TimeColumn::new_duration_secs(
-                SIM_TIME,
-                instants.iter().map(|i| self.time_offset + i[0].time),
-            )]
-        };
         self.rec.send_columns(
-            path::SEGMENTS,
-            times(),
-            rerun::LineStrips2D::update_fields()
-                .with_strips(ropes)
-                .with_colors(rope_colours)
-                .columns(rope_lengths)?,
-        )?;
-        self.rec.send_columns(
-            path::TIPS,
-            times(),
-            rerun::Points2D::update_fields()
-                .with_positions(tips)
-                .with_colors(tip_colours)
-                .with_labels(names)
-                .columns(per_instant.iter().copied())?,
-        )?;
-        self.rec.send_columns(
-            path::PROFILES,
-            times(),
-            rerun::LineStrips2D::update_fields()
-                .with_strips(profiles)
-                .with_colors(profile_colours)
-                .columns(per_instant)?,
-        )
-    }
-
-    /// The tip, and its trail as it stood at each frame.
-    fn log_tip_and_trail(
-        &mut self,
-        lane: usize,
-        frames: &[&Frame],
-    ) -> rerun::RecordingStreamResult<()> {
-        let tips: Vec<[f32; 2]> = frames.iter().map(|f| xy(&f.tip())).collect();
-        let times = self.frame_times(frames);
-        let lane = &mut self.lanes[lane];
-        self.rec.send_columns(
-            lane.at(path::TIP),
+            path::THEN_SEGMENTS,
             times.clone(),
-            rerun::Points2D::update_fields()
-                .with_positions(tips.iter().copied())
-                .columns_of_unit_batches()?,
+            rerun::LineStrips2D::update_fields()
+                .with_strips(shapes.ropes)
+                .with_colors(shapes.rope_colours)
+                .columns(shapes.rope_lengths)?,
         )?;
-        let trail = &mut lane.trail;
-        let trails: Vec<Vec<[f32; 2]>> = tips
-            .iter()
-            .map(|&tip| {
-                if trail.len() == TRAIL_FRAMES {
-                    trail.pop_front();
-                }
-                trail.push_back(tip);
-                trail.iter().copied().collect()
-            })
-            .collect();
         self.rec.send_columns(
-            lane.at(path::TRAIL),
+            path::THEN_TIP,
             times,
-            rerun::LineStrips2D::update_fields()
-                .with_strips(trails)
-                .columns_of_unit_batches()?,
-        )
-    }
-
-    /// F(s) drawn upward: x = s, y = −F (the 2D view's y points down).
-    fn log_tension_profile(
-        &self,
-        lane: usize,
-        frames: &[&Frame],
-    ) -> rerun::RecordingStreamResult<()> {
-        let profiles: Vec<Vec<[f32; 2]>> = frames.iter().map(|f| profile(f)).collect();
-        self.rec.send_columns(
-            self.lanes[lane].at(path::PROFILE),
-            self.frame_times(frames),
-            rerun::LineStrips2D::update_fields()
-                .with_strips(profiles)
+            rerun::Points2D::update_fields()
+                .with_positions(shapes.tips)
+                .with_labels(then.iter().map(|t| then_label(t.time)))
                 .columns_of_unit_batches()?,
         )
     }
@@ -538,6 +672,7 @@ impl RopeLogger {
     /// Sends the time series gathered so far, one chunk per series and lane.
     pub fn send_series(&mut self) -> rerun::RecordingStreamResult<()> {
         self.series_sent = Instant::now();
+        self.send_then()?;
         for lane in &mut self.lanes {
             send_lane_series(&self.rec, lane, self.tolerance)?;
         }
@@ -591,15 +726,28 @@ fn send_lane_series(
 
 impl RopeLogger {
     /// What is running, where the run starts: the caption over the rope, and the parameters.
-    fn log_run_text(&self, headline: String, markdown: String) -> Result<(), RecordingError> {
-        let times = || timelines([self.time_offset], [self.step_offset as i64]);
-        self.rec.send_columns(
-            path::CAPTION,
-            times(),
-            rerun::Points2D::update_fields()
-                .with_labels([headline])
-                .columns_of_unit_batches()?,
-        )?;
+    fn log_run_text(&mut self, headline: String, markdown: String) -> Result<(), RecordingError> {
+        let (time, step) = (self.time_offset, self.step_offset as i64);
+        let times = || timelines([time], [step]);
+        // A history keeps a shape where each run starts.
+        self.next_shape = time;
+        self.headline.clone_from(&headline);
+        if let Some(live) = &mut self.live {
+            live.caption_now();
+            self.log_live_caption(time)?;
+        } else {
+            self.rec.send_columns(
+                path::CAPTION,
+                times(),
+                rerun::Points2D::update_fields()
+                    .with_labels([headline])
+                    .columns_of_unit_batches()?,
+            )?;
+        }
+        let markdown = match &self.parameters_note {
+            Some(note) => format!("{markdown}\n\n{note}"),
+            None => markdown,
+        };
         self.rec.send_columns(
             path::PARAMETERS,
             times(),
@@ -609,6 +757,11 @@ impl RopeLogger {
                 .columns_of_unit_batches()?,
         )?;
         Ok(())
+    }
+
+    /// Text added to every run's parameters (markdown): what the history costs a viewer.
+    pub fn note_in_parameters(&mut self, note: String) {
+        self.parameters_note = Some(note);
     }
 
     /// How one method of several side by side is drawn in the plots: in its own colour,
@@ -629,6 +782,204 @@ impl RopeLogger {
             )?;
         }
         Ok(())
+    }
+}
+
+/// Time units of simulated time over which a history gathers its rows and shapes before
+/// sending them: a chunk per series and lane carries about 1.2 kB besides its rows, so a
+/// history sends a few large ones, at the same bytes per time unit whatever the run's speed.
+pub const HISTORY_SEND_UNITS: f64 = 20.0;
+
+/// A shape of the rope (of each method side by side) the history keeps, not yet sent.
+struct ThenShape {
+    time: f64,
+    step: i64,
+    frames: Vec<Frame>,
+}
+
+/// The "then" tip's label: the time the shape is of.
+fn then_label(time: f64) -> String {
+    format!("then: t = {time:.1}")
+}
+
+/// Moves a trail on by `tips`; returns the trail as it stood at each of them when `each`.
+fn advance_trail(
+    trail: &mut VecDeque<[f32; 2]>,
+    tips: &[[f32; 2]],
+    each: bool,
+) -> Vec<Vec<[f32; 2]>> {
+    let mut trails = Vec::new();
+    for &tip in tips {
+        if trail.len() == TRAIL_FRAMES {
+            trail.pop_front();
+        }
+        trail.push_back(tip);
+        if each {
+            trails.push(trail.iter().copied().collect());
+        }
+    }
+    trails
+}
+
+/// The rope of each frame: one 2-point strip per segment, coloured by its tension, at
+/// `times` (none: static, one frame).
+fn send_rope(
+    rec: &RecordingStream,
+    entity: &str,
+    frames: &[&Frame],
+    times: Vec<rerun::TimeColumn>,
+) -> rerun::RecordingStreamResult<()> {
+    let mut strips = Vec::new();
+    let mut colours = Vec::new();
+    let mut lengths = Vec::with_capacity(frames.len());
+    for f in frames {
+        lengths.push(f.tension.len());
+        strips.extend(f.nodes.windows(2).map(|w| [xy(&w[0]), xy(&w[1])]));
+        colours.extend(f.tension.iter().map(|&t| tension_colour(t)));
+    }
+    rec.send_columns(
+        entity,
+        times,
+        rerun::LineStrips2D::update_fields()
+            .with_strips(strips)
+            .with_colors(colours)
+            .columns(lengths)?,
+    )
+}
+
+/// A tip per row, at `times` (none: static, one row).
+fn send_tips(
+    rec: &RecordingStream,
+    entity: &str,
+    tips: Vec<[f32; 2]>,
+    times: Vec<rerun::TimeColumn>,
+) -> rerun::RecordingStreamResult<()> {
+    rec.send_columns(
+        entity,
+        times,
+        rerun::Points2D::update_fields()
+            .with_positions(tips)
+            .columns_of_unit_batches()?,
+    )
+}
+
+/// A trail per row, at `times` (none: static, one row).
+fn send_trails(
+    rec: &RecordingStream,
+    entity: &str,
+    trails: Vec<Vec<[f32; 2]>>,
+    times: Vec<rerun::TimeColumn>,
+) -> rerun::RecordingStreamResult<()> {
+    rec.send_columns(
+        entity,
+        times,
+        rerun::LineStrips2D::update_fields()
+            .with_strips(trails)
+            .columns_of_unit_batches()?,
+    )
+}
+
+/// F(s) of each frame drawn upward, at `times` (none: static, one frame).
+fn send_profiles(
+    rec: &RecordingStream,
+    entity: &str,
+    frames: &[&Frame],
+    times: Vec<rerun::TimeColumn>,
+) -> rerun::RecordingStreamResult<()> {
+    let profiles: Vec<Vec<[f32; 2]>> = frames.iter().map(|f| profile(f)).collect();
+    rec.send_columns(
+        entity,
+        times,
+        rerun::LineStrips2D::update_fields()
+            .with_strips(profiles)
+            .columns_of_unit_batches()?,
+    )
+}
+
+/// The ropes (in [`SHADE`]s of tension), tips and tension profiles of instants of several
+/// methods, as rows of three entities: an instant a row.
+struct SharedShapes {
+    ropes: Vec<Vec<[f32; 2]>>,
+    rope_colours: Vec<rerun::Color>,
+    rope_lengths: Vec<usize>,
+    tips: Vec<[f32; 2]>,
+    tip_colours: Vec<rerun::Color>,
+    names: Vec<&'static str>,
+    profiles: Vec<Vec<[f32; 2]>>,
+    per_instant: Vec<usize>,
+}
+
+impl SharedShapes {
+    /// The shapes of `instants`, each frame's colour and name from `lane_of`.
+    fn of(
+        instants: &[Vec<&Frame>],
+        lane_of: impl Fn(&Frame) -> (rerun::Color, &'static str),
+    ) -> Self {
+        let mut shapes = Self {
+            ropes: Vec::new(),
+            rope_colours: Vec::new(),
+            rope_lengths: Vec::with_capacity(instants.len()),
+            tips: Vec::new(),
+            tip_colours: Vec::new(),
+            names: Vec::new(),
+            profiles: Vec::new(),
+            per_instant: Vec::with_capacity(instants.len()),
+        };
+        for instant in instants {
+            let before = shapes.ropes.len();
+            for f in instant {
+                let nodes: Vec<[f32; 2]> = f.nodes.iter().map(xy).collect();
+                let (strips, colours) = shaded_strips(&nodes, &f.tension, SHADE);
+                shapes.ropes.extend(strips);
+                shapes.rope_colours.extend(colours);
+                let (colour, name) = lane_of(f);
+                shapes.tips.push(xy(&f.tip()));
+                shapes.tip_colours.push(colour);
+                shapes.names.push(name);
+                shapes.profiles.push(profile(f));
+            }
+            shapes.rope_lengths.push(shapes.ropes.len() - before);
+            shapes.per_instant.push(instant.len());
+        }
+        shapes
+    }
+
+    /// Sends the ropes, tips and (unless its path is empty) profiles at `times` (none:
+    /// static, one instant).
+    fn send(
+        self,
+        rec: &RecordingStream,
+        [segments, tips, profiles]: [&str; 3],
+        times: Vec<rerun::TimeColumn>,
+    ) -> rerun::RecordingStreamResult<()> {
+        rec.send_columns(
+            segments,
+            times.clone(),
+            rerun::LineStrips2D::update_fields()
+                .with_strips(self.ropes)
+                .with_colors(self.rope_colours)
+                .columns(self.rope_lengths)?,
+        )?;
+        rec.send_columns(
+            tips,
+            times.clone(),
+            rerun::Points2D::update_fields()
+                .with_positions(self.tips)
+                .with_colors(self.tip_colours.iter().copied())
+                .with_labels(self.names)
+                .columns(self.per_instant.iter().copied())?,
+        )?;
+        if profiles.is_empty() {
+            return Ok(());
+        }
+        rec.send_columns(
+            profiles,
+            times,
+            rerun::LineStrips2D::update_fields()
+                .with_strips(self.profiles)
+                .with_colors(self.tip_colours)
+                .columns(self.per_instant)?,
+        )
     }
 }
 
@@ -656,7 +1007,7 @@ impl FrameSink for RopeLogger {
     fn begin_run(&mut self, plan: &RunPlan) -> Result<(), RecordingError> {
         // What was gathered belongs to the run before, and to its tolerance.
         self.send_series()?;
-        self.lanes = vec![LaneLog::alone()];
+        self.lanes = vec![LaneLog::alone(Some(plan), self.keeping)];
         self.tolerance = plan.tolerance;
         self.log_run_text(plan.headline(), plan.markdown())
     }
@@ -667,7 +1018,7 @@ impl FrameSink for RopeLogger {
         self.lanes = plans
             .iter()
             .enumerate()
-            .map(|(i, p)| LaneLog::of(i, p))
+            .map(|(i, p)| LaneLog::of(i, p, self.keeping))
             .collect();
         for lane in &self.lanes {
             self.style_lane(lane)?;

@@ -3,15 +3,19 @@
 //! * [`logger`]: [`RopeLogger`](logger::RopeLogger), the [`FrameSink`](crate::run::FrameSink)
 //!   that draws frames as Rerun entities (it knows nothing of the equations);
 //! * [`entities`]: the entity paths, timelines and time series, by name;
+//! * [`budget`]: how long a page can stay open on a history, worked out before the run;
+//! * [`live`]: what viewers of a run that never ends are sent: a live picture and a history;
 //! * [`blueprint`]: the viewer's layout, one function per view; [`colour`]: the tension map;
 //! * [`destinations`]: the flags that name where the recording goes, and opening them;
 //! * [`viewer_sinks`]: links to viewers that can never stall a run;
 //! * [`error`]: what can go wrong here.
 
 pub mod blueprint;
+pub mod budget;
 pub mod colour;
 pub mod destinations;
 pub mod entities;
 pub mod error;
+pub mod live;
 pub mod logger;
 pub mod viewer_sinks;

@@ -175,6 +175,22 @@ pub struct ViewerSink {
 impl ViewerSink {
     /// Connects to the viewer at `url` (`rerun+http://host:port/proxy`).
     pub fn connect(url: &str) -> Result<Self, OutputError> {
+        Self::connect_linked(url, None, QUEUE)
+    }
+
+    /// A second connection to the viewer of `link` (a live picture beside its history),
+    /// sharing the link: the viewer is gone when either connection finds it gone, and then
+    /// both drop their data. Its queue holds a few pictures: a live picture that waits is
+    /// stale, and a viewer that takes none is found out as soon as with every frame.
+    pub fn connect_beside(link: &ViewerLink) -> Result<Self, OutputError> {
+        Self::connect_linked(link.url(), Some(link.clone()), LIVE_QUEUE)
+    }
+
+    fn connect_linked(
+        url: &str,
+        shared: Option<ViewerLink>,
+        queue_length: usize,
+    ) -> Result<Self, OutputError> {
         let bad_url = |reason: String| OutputError::ConnectUrl {
             url: url.to_owned(),
             reason,
@@ -189,8 +205,8 @@ impl ViewerSink {
                 url: url.to_owned(),
             });
         }
-        let link = ViewerLink::new(url);
-        let (commands, queue) = crossbeam_channel::bounded(QUEUE);
+        let link = shared.unwrap_or_else(|| ViewerLink::new(url));
+        let (commands, queue) = crossbeam_channel::bounded(queue_length);
         let (done, finished) = crossbeam_channel::bounded(1);
         let watched = link.clone();
         std::thread::Builder::new()
@@ -418,5 +434,117 @@ impl Drop for ServedSink {
         if closing.is_ok() {
             finished.recv_timeout(SERVE_FLUSH_CAP).ok();
         }
+    }
+}
+
+/// Live pictures that a [`LiveSink`] did not send because its viewers were behind.
+#[derive(Clone, Debug, Default)]
+pub struct LiveDropped(Arc<std::sync::atomic::AtomicU64>);
+
+impl LiveDropped {
+    /// How many messages were dropped so far.
+    pub fn count(&self) -> u64 {
+        self.0.load(std::sync::atomic::Ordering::Relaxed)
+    }
+
+    fn add(&self) {
+        self.0.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    }
+}
+
+/// Messages of the live picture that may wait for a served endpoint: a few pictures.
+const LIVE_QUEUE: usize = 64;
+
+/// How long the live picture's thread waits for the endpoint at a time, to notice when the
+/// process is closing.
+const LIVE_WAIT: Duration = Duration::from_millis(500);
+
+/// The live picture's served endpoint (one that keeps no history), as a [`LogSink`] that
+/// drops pictures rather than queue them while its viewers are behind.
+///
+/// Rerun's server hands every message to every viewer through a bounded broadcast; a viewer
+/// that reads slowly (or a page that stops reading) holds it back, and what the process
+/// sends meanwhile waits in an unbounded queue. A live picture replaces itself, so nothing is
+/// lost by sending fewer of them: a thread hands the server what it can take, waiting for it
+/// to take each batch before the next, and messages that find the queue in front of it full
+/// are dropped (and counted). The process's memory stays bounded whoever reads how slowly.
+pub struct LiveSink {
+    queue: Option<Sender<LogMsg>>,
+    dropped: LiveDropped,
+}
+
+impl LiveSink {
+    /// Wraps a started server that keeps no history.
+    pub fn new(server: rerun::grpc_server::GrpcServerSink) -> std::io::Result<Self> {
+        let (queue, messages) = crossbeam_channel::bounded::<LogMsg>(LIVE_QUEUE);
+        std::thread::Builder::new()
+            .name("rope_live_picture".to_owned())
+            .spawn(move || forward_live(server, &messages))?;
+        Ok(Self {
+            queue: Some(queue),
+            dropped: LiveDropped::default(),
+        })
+    }
+
+    /// A handle on the count of dropped messages.
+    pub fn dropped(&self) -> LiveDropped {
+        self.dropped.clone()
+    }
+}
+
+/// The live picture's thread: sends what is queued, then waits until the server has taken
+/// it before sending more.
+fn forward_live(server: rerun::grpc_server::GrpcServerSink, messages: &Receiver<LogMsg>) {
+    while let Ok(msg) = messages.recv() {
+        server.send(msg);
+        while let Ok(msg) = messages.try_recv() {
+            server.send(msg);
+        }
+        loop {
+            match server.flush_blocking(LIVE_WAIT) {
+                Err(SinkFlushError::Timeout) if !messages.is_empty() || !closed(messages) => {}
+                Err(SinkFlushError::Timeout) => {
+                    // Closing while a viewer holds the server back: Rerun's shutdown would
+                    // wait for it without a bound. The process takes the thread with it.
+                    std::mem::forget(server);
+                    return;
+                }
+                _ => break,
+            }
+        }
+    }
+    drop(server);
+}
+
+/// Whether nobody can send on the queue any more.
+fn closed(messages: &Receiver<LogMsg>) -> bool {
+    matches!(
+        messages.recv_timeout(Duration::ZERO),
+        Err(RecvTimeoutError::Disconnected)
+    )
+}
+
+impl LogSink for LiveSink {
+    fn send(&self, msg: LogMsg) {
+        if let Some(queue) = &self.queue
+            && queue.try_send(msg).is_err()
+        {
+            self.dropped.add();
+        }
+    }
+
+    /// The live picture is never waited for: what a viewer has not taken is replaced.
+    fn flush_blocking(&self, _timeout: Duration) -> Result<(), SinkFlushError> {
+        Ok(())
+    }
+
+    fn default_batcher_config(&self) -> ChunkBatcherConfig {
+        ChunkBatcherConfig::LOW_LATENCY
+    }
+}
+
+impl Drop for LiveSink {
+    fn drop(&mut self) {
+        self.queue = None; // the thread sends what is left, then ends
     }
 }

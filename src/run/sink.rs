@@ -67,6 +67,36 @@ impl FrameSink for () {
     fn end_run(&mut self, _time: f64, _steps: u64) {}
 }
 
+/// Several sinks that each take every frame (a file that keeps every frame beside viewers
+/// that get a live picture): each call goes to each in turn, the first error ends it.
+impl<S: FrameSink> FrameSink for Vec<S> {
+    type Error = S::Error;
+
+    fn begin_run(&mut self, plan: &RunPlan) -> Result<(), Self::Error> {
+        self.iter_mut().try_for_each(|s| s.begin_run(plan))
+    }
+
+    fn frames(&mut self, frames: &[Frame]) -> Result<(), Self::Error> {
+        self.iter_mut().try_for_each(|s| s.frames(frames))
+    }
+
+    fn flush(&mut self) -> Result<(), Self::Error> {
+        self.iter_mut().try_for_each(FrameSink::flush)
+    }
+
+    fn end_run(&mut self, time: f64, steps: u64) {
+        self.iter_mut().for_each(|s| s.end_run(time, steps));
+    }
+
+    fn begin_lanes(&mut self, plans: &[RunPlan]) -> Result<(), Self::Error> {
+        self.iter_mut().try_for_each(|s| s.begin_lanes(plans))
+    }
+
+    fn lane_ended(&mut self, lane: usize, why: &Diverged) -> Result<(), Self::Error> {
+        self.iter_mut().try_for_each(|s| s.lane_ended(lane, why))
+    }
+}
+
 /// The receiving end of the channel has gone: nobody takes the frames any more.
 #[derive(Debug, thiserror::Error)]
 #[error("the frames' receiver has gone")]

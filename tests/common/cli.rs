@@ -169,6 +169,13 @@ impl Recording {
         self.temporal_values(entity, text, |t: &rerun::components::Text| t.to_string())
     }
 
+    /// How many static chunks of `entity` arrived (a live picture: each replaces the last).
+    pub fn static_chunks(&self, entity: &str) -> usize {
+        self.chunks
+            .get(entity)
+            .map_or(0, |chunks| chunks.iter().filter(|c| c.is_static()).count())
+    }
+
     pub fn has(&self, entity: &str) -> bool {
         self.chunks.contains_key(entity)
     }
@@ -236,6 +243,18 @@ pub fn free_port() -> u16 {
         .and_then(|l| l.local_addr())
         .expect("a free port")
         .port()
+}
+
+/// A free port whose next port is free too: a served run's history endpoint and its live
+/// picture's.
+pub fn free_pair() -> u16 {
+    for _ in 0..100 {
+        let port = free_port();
+        if std::net::TcpListener::bind(("127.0.0.1", port + 1)).is_ok() {
+            return port;
+        }
+    }
+    panic!("no two free ports in a row");
 }
 
 /// Reads `child`'s stderr until a line contains `needle` (that line) or the stream ends
