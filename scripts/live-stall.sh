@@ -15,7 +15,7 @@ python3 scripts/web-check.py --seconds 120 \
     --stall "$stall" --sample-every 30 --soak-csv assets/live-soak/stall.csv \
     --screenshot "$tmp/stall.png"
 rerun rrd verify "$tmp/stall.rrd"
-rows=$(rerun rrd print "$tmp/stall.rrd" 2> /dev/null | awk '/ - \/rope\/segments - / { sum += $3 } END { print sum }')
+rows=$(rerun rrd print "$tmp/stall.rrd" 2> /dev/null | awk '/ - \/rope\/segments - .*LineStrips2D:strips/ { sum += $3 } END { print sum }')
 frames=$(python3 -c "import json, sys; print(json.load(open(sys.argv[1]))['frames_logged'])" "$tmp/stall.json")
 echo "live-stall: the summary says $frames frames logged; the file holds $rows rows of rope/segments"
 [ "$rows" = "$frames" ] || { echo "live-stall: FAILED: the file does not hold every frame"; exit 1; }

@@ -26,6 +26,7 @@ that data arrived, not that the newest frame is on screen.
 
 import argparse
 import hashlib
+import os
 import pathlib
 import shutil
 import signal
@@ -113,7 +114,8 @@ def soak(page, rope_pid: int, seconds: float, every: float, csv: pathlib.Path) -
             # The time panel's strip (its time readout follows the live stream): a small
             # picture, cheap to take from a renderer that is busy drawing. A renderer that
             # cannot give one within 20 s has fallen behind: the sample says so, and goes on.
-            strip = page.screenshot(clip={"x": 0, "y": 640, "width": 640, "height": 40},
+            height = page.viewport_size["height"]
+            strip = page.screenshot(clip={"x": 0, "y": height - 160, "width": 640, "height": 40},
                                     timeout=20_000)
             picture = hashlib.sha256(strip).hexdigest()
         except Exception:  # a crashed or stalled renderer raises here; said below
@@ -144,12 +146,33 @@ def soak(page, rope_pid: int, seconds: float, every: float, csv: pathlib.Path) -
     return failures
 
 
+def descendants(root: int):
+    """The pids of every process below `root`."""
+    parents = {}
+    for entry in pathlib.Path("/proc").iterdir():
+        if entry.name.isdigit():
+            try:
+                stat = (entry / "stat").read_text()
+                parents[int(entry.name)] = int(stat.rsplit(")", 1)[1].split()[1])
+            except (FileNotFoundError, ProcessLookupError, IndexError, ValueError):
+                pass
+    found, frontier = [], [root]
+    while frontier:
+        parent = frontier.pop()
+        children = [pid for pid, ppid in parents.items() if ppid == parent]
+        found += children
+        frontier += children
+    return found
+
+
 def stall(page, rope_pid: int, seconds: float, every: float, csv: pathlib.Path) -> list:
     """Stops every browser process for `seconds` (a page that reads nothing), sampling rope's
     resident memory every `every` s; resumes them and checks that the page answers and that
     its picture moves again. Returns the failures seen."""
     rows = ["seconds,stopped,rope_mb"]
-    pids = browser_pids()
+    # This script's own browser only (another check may be running beside it).
+    mine = set(descendants(os.getpid()))
+    pids = [pid for pid in browser_pids() if pid in mine]
     for pid in pids:
         subprocess.run(["kill", "-STOP", str(pid)], check=False)
     started = time.time()

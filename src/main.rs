@@ -84,10 +84,15 @@ fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
     if let Some(page) = &output.web_page {
         eprintln!("rope: watch it in a browser at {page}");
     }
+    let live = output
+        .recordings
+        .iter()
+        .any(|r| matches!(r, Recording::Live { .. }));
     let mut loggers = Vec::new();
     for recording in &output.recordings {
         loggers.push(
             match recording {
+                Recording::Everything(rec) if live => RopeLogger::file_beside_viewers(rec.clone()),
                 Recording::Everything(rec) => RopeLogger::new(rec.clone()),
                 Recording::Live { history, live } => {
                     RopeLogger::live(history.clone(), live.clone(), rates)
@@ -96,11 +101,7 @@ fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
             .context("logging the recording's styling")?,
         );
     }
-    if output
-        .recordings
-        .iter()
-        .any(|r| matches!(r, Recording::Live { .. }))
-    {
+    if live {
         let budget = Budget::measure(&lanes, rates);
         let text = budget.text();
         eprintln!(
