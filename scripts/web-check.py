@@ -146,6 +146,40 @@ def soak(page, rope_pid: int, seconds: float, every: float, csv: pathlib.Path) -
     return failures
 
 
+# Where the live layout puts things in a 1280×800 page: the live rope's view, the "then"
+# rope's view, and the time panel's bar.
+LIVE_VIEW = {"x": 10, "y": 60, "width": 450, "height": 580}
+THEN_VIEW = {"x": 470, "y": 60, "width": 340, "height": 260}
+TIME_BAR = (210, 1245, 715)
+
+
+def scrub(page) -> list:
+    """Scrubs back to early in the run: the "then" rope must change (the past one), and the
+    live rope go on moving. Returns the failures seen."""
+    def picture(clip):
+        return hashlib.sha256(page.screenshot(clip=clip, timeout=30_000)).hexdigest()
+    failures = []
+    try:
+        then_before = picture(THEN_VIEW)
+        left, right, y = TIME_BAR
+        page.mouse.click(left + 0.1 * (right - left), y)
+        page.wait_for_timeout(4000)
+        then_after = picture(THEN_VIEW)
+        live = [picture(LIVE_VIEW)]
+        for _ in range(3):
+            page.wait_for_timeout(2000)
+            live.append(picture(LIVE_VIEW))
+        page.screenshot(path=str(ROOT / "target" / "web-check-scrubbed.png"), timeout=30_000)
+    except Exception as err:
+        return [f"scrubbing could not be checked: {str(err).splitlines()[0]}"]
+    if then_before == then_after:
+        failures.append("scrubbing back did not change the 'then' rope")
+    if len(set(live)) < 2:
+        failures.append("the live rope did not move while the time cursor was scrubbed back")
+    print(f"web-check: scrubbed back: the 'then' rope changed, the live rope moved in {len(set(live)) - 1} of 3 intervals")
+    return failures
+
+
 def descendants(root: int):
     """The pids of every process below `root`."""
     parents = {}
@@ -271,6 +305,8 @@ def main() -> int:
                 break
             page.wait_for_timeout(500)
         page.wait_for_timeout(5000)
+        if args.viewport == "1280x800" and args.soak == 0 and args.stall == 0:
+            failures += scrub(page)
         if args.stall > 0:
             failures += stall(page, run.pid, args.stall, args.sample_every, pathlib.Path(args.soak_csv))
         if args.soak > 0:

@@ -16,22 +16,25 @@ use rerun::blueprint::{
 /// side by side (`lanes`, a plan each), their ropes share the rope view, each named at its
 /// tip, and the energy panel gives way to their distance from the most accurate one's string.
 pub fn blueprint(headline: Option<&str>, lanes: &[RunPlan]) -> Blueprint {
-    Blueprint::new(
-        Horizontal::new([
-            rope_view(headline).into(),
-            tension_profile_view().into(),
-            plots(lanes).into(),
-        ])
-        .with_column_shares([4.0, 3.0, 4.0]),
-    )
-    .with_auto_views(false)
-    .with_blueprint_panel(BlueprintPanel::from_state(PanelState::Collapsed))
-    .with_selection_panel(SelectionPanel::from_state(PanelState::Collapsed))
-    .with_time_panel(
-        TimePanel::new()
-            .with_timeline(SIM_TIME)
-            .with_state(PanelState::Expanded),
-    )
+    window([
+        rope_view(headline).into(),
+        tension_profile_view().into(),
+        plots(lanes).into(),
+    ])
+}
+
+/// Three columns (rope, profile, plots) that get the window: the blueprint and selection
+/// panels start collapsed; the time panel, which scrubs the run, stays.
+fn window(columns: [ContainerLike; 3]) -> Blueprint {
+    Blueprint::new(Horizontal::new(columns).with_column_shares([4.0, 3.0, 4.0]))
+        .with_auto_views(false)
+        .with_blueprint_panel(BlueprintPanel::from_state(PanelState::Collapsed))
+        .with_selection_panel(SelectionPanel::from_state(PanelState::Collapsed))
+        .with_time_panel(
+            TimePanel::new()
+                .with_timeline(SIM_TIME)
+                .with_state(PanelState::Expanded),
+        )
 }
 
 /// The plots: energy (side by side, the disagreement), its deviation, the error estimate,
@@ -57,27 +60,16 @@ fn plots(lanes: &[RunPlan]) -> Vertical {
 /// profile the rope "then", at the time cursor, from the history kept every
 /// `shape_interval` time units; the plots as for a run of every frame.
 pub fn live(headline: Option<&str>, lanes: &[RunPlan], shape_interval: f64) -> Blueprint {
-    Blueprint::new(
-        Horizontal::new([
-            live_rope_view(headline).into(),
-            Vertical::new([
-                then_rope_view(shape_interval).into(),
-                tension_profile_view().into(),
-            ])
-            .with_row_shares([3.0, 2.0])
-            .into(),
-            plots(lanes).into(),
+    window([
+        live_rope_view(headline).into(),
+        Vertical::new([
+            then_rope_view(shape_interval).into(),
+            tension_profile_view().into(),
         ])
-        .with_column_shares([4.0, 3.0, 4.0]),
-    )
-    .with_auto_views(false)
-    .with_blueprint_panel(BlueprintPanel::from_state(PanelState::Collapsed))
-    .with_selection_panel(SelectionPanel::from_state(PanelState::Collapsed))
-    .with_time_panel(
-        TimePanel::new()
-            .with_timeline(SIM_TIME)
-            .with_state(PanelState::Expanded),
-    )
+        .with_row_shares([3.0, 2.0])
+        .into(),
+        plots(lanes).into(),
+    ])
 }
 
 /// The live rope: it replaces itself at every frame, whatever the time cursor says.
