@@ -179,6 +179,17 @@ fn a_method_that_diverges_stops_alone_and_the_other_finishes() {
         events.iter().any(|e| e.starts_with("seed diverged at t =")),
         "{events:?}"
     );
+    // The seed's plot lines break where it stopped (a loop would start it again later);
+    // the chain's do not.
+    for entity in ["log10/energy_deviation/seed", "energy/total/seed"] {
+        let cleared = rec.cleared_at(entity);
+        assert_eq!(cleared.len(), 1, "{entity}: {cleared:?}");
+        assert!(
+            (cleared[0] - diverged_at).abs() < 1e-6,
+            "{entity}: {cleared:?}"
+        );
+    }
+    assert!(rec.cleared_at("energy/total/chain").is_empty());
     assert!(
         said.contains("seed, release at 30°") && said.contains("DIVERGED"),
         "{said}"

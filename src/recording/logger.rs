@@ -1121,6 +1121,18 @@ impl FrameSink for RopeLogger {
                 .with_level(rerun::TextLogLevel::WARN)
                 .columns_of_unit_batches()?,
         )?;
+        // Its plots stop here: a clear breaks each line, which would otherwise run straight
+        // on to where the method starts again (the next pass of a loop).
+        for (entity, ..) in SERIES.into_iter().filter(|(e, ..)| lane.sends(e)) {
+            self.rec.send_columns(
+                lane.at(entity),
+                timelines(
+                    [self.time_offset + why.time],
+                    [(self.step_offset + why.step) as i64],
+                ),
+                rerun::Clear::flat().columns_of_unit_batches()?,
+            )?;
+        }
         Ok(())
     }
 

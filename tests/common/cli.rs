@@ -90,6 +90,23 @@ impl Recording {
         Self::decode(&std::fs::read(path).expect("the recording exists"))
     }
 
+    /// Where `entity` was cleared on `sim_time` (a break in its plot), in seconds.
+    pub fn cleared_at(&self, entity: &str) -> Vec<f64> {
+        let timeline = rerun::TimelineName::from_static_str("sim_time");
+        let clear = rerun::Clear::descriptor_is_recursive().component;
+        self.chunks
+            .get(entity)
+            .into_iter()
+            .flatten()
+            .filter(|c| {
+                c.iter_component::<rerun::components::ClearIsRecursive>(clear)
+                    .any(|row| !row.is_empty())
+            })
+            .filter_map(|c| c.timelines().get(&timeline))
+            .flat_map(|column| column.times_raw().iter().map(|&ns| ns as f64 * 1e-9))
+            .collect()
+    }
+
     /// Rows logged on the timelines (not static) for `entity`.
     pub fn temporal_rows(&self, entity: &str) -> usize {
         self.chunks
