@@ -423,6 +423,13 @@ fn run_passes(
                 side_by_side(lanes)?
             };
             progress.finish();
+            let mut summary = summary;
+            if args.method.is_empty() && args.tolerance.is_none() && args.lasts() {
+                summary.method_chosen_because = Some(format!(
+                    "{}, the default for a run left running (endless, looping or served): it keeps the energy at every frame, at about three quarters of the chain's cost per time unit",
+                    summary.method
+                ));
+            }
             if several {
                 // Each run of several says all it has as it ends; the last is not repeated.
                 eprintln!("{}", summary.human());

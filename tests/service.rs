@@ -199,7 +199,8 @@ fn an_endless_served_run_gives_a_late_viewer_its_history_and_a_live_picture() {
     let stderr = stderr_of(&mut server);
     assert_eq!(status.code(), Some(130), "{stderr}");
     assert!(
-        stderr.contains("uses the midpoint method: it keeps the energy at every frame"),
+        stderr.contains("uses the midpoint method: it keeps the energy at every frame")
+            && stderr.contains("method: midpoint, the default for a run left running"),
         "{stderr}"
     );
 }

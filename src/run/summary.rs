@@ -162,6 +162,10 @@ pub struct Summary {
     /// run (`None` for the most accurate itself, and in a run of one method).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub disagreement: Option<f64>,
+    /// Why the method ran when none was named and it is not the report's: for a run left
+    /// running (endless, looping or served), the one that keeps the energy at every frame.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub method_chosen_because: Option<String>,
     /// In a run of several methods side by side, each one's summary, in the order named
     /// (the fields above are the first one's); absent in a run of one method.
     #[serde(skip_serializing_if = "Vec::is_empty")]
@@ -236,6 +240,7 @@ impl Summary {
             period_theory: plan.scene.mode_period(),
             free_fall,
             recording_error,
+            method_chosen_because: None,
             disagreement: None,
             methods: Vec::new(),
         }
@@ -262,6 +267,9 @@ impl Summary {
             steps = self.steps,
             t = self.steps as f64 * self.dt,
         );
+        if let Some(why) = &self.method_chosen_because {
+            text.push_str(&format!("  method: {why}\n"));
+        }
         let last = if self.status == Status::Diverged {
             format!(
                 "last trusted state (t = {:.4}, step {})",
