@@ -597,6 +597,12 @@ impl RunArgs {
         self.endless() || self.output.served_at().is_some()
     }
 
+    /// Whether the method is the default for a run left running: none named, none chosen
+    /// by `--tolerance`, and the run [`lasts`](Self::lasts).
+    pub fn lasting_default(&self) -> bool {
+        self.method.is_empty() && self.tolerance.is_none() && self.lasts()
+    }
+
     /// Whether the run never ends by itself: `--duration inf`, or `--loop` until Ctrl-C.
     pub fn endless(&self) -> bool {
         self.duration.is_infinite() || self.repeat == Some(Passes::Forever)

@@ -243,10 +243,11 @@ fn announce(args: &RunArgs, plans: &[Planned]) {
         }
     }
     // (--tolerance with an endless run was refused before.)
-    if args.method.is_empty() && args.tolerance.is_none() && args.lasts() {
+    if args.lasting_default() {
         eprintln!(
-            "rope: a run left running (endless, looping or served) uses the {} method: it keeps the energy at every frame, at about three quarters of the chain's cost per time unit (the report's scheme blows up after tens of time units, the chain's energy drifts down, rattle's jumps at violent snaps; --method to choose another)",
-            args.method()
+            "rope: a run left running (endless, looping or served) uses the {} method: {} (the report's scheme blows up after tens of time units, the chain's energy drifts down, rattle's jumps at violent snaps; --method to choose another)",
+            args.method(),
+            MethodKind::DEFAULT_LASTING_BECAUSE
         );
     }
 }
@@ -424,10 +425,11 @@ fn run_passes(
             };
             progress.finish();
             let mut summary = summary;
-            if args.method.is_empty() && args.tolerance.is_none() && args.lasts() {
+            if args.lasting_default() {
                 summary.method_chosen_because = Some(format!(
-                    "{}, the default for a run left running (endless, looping or served): it keeps the energy at every frame, at about three quarters of the chain's cost per time unit",
-                    summary.method
+                    "{}, the default for a run left running (endless, looping or served): {}",
+                    summary.method,
+                    MethodKind::DEFAULT_LASTING_BECAUSE
                 ));
             }
             if several {

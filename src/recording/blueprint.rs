@@ -3,6 +3,7 @@
 
 use super::entities::{SIM_TIME, path};
 use crate::run::RunPlan;
+use crate::run::config::trimmed_fixed;
 use crate::run::simulate::REFERENCE_STEP;
 use rerun::blueprint::components::PanelState;
 use rerun::blueprint::{
@@ -85,15 +86,9 @@ fn live_rope_view(headline: Option<&str>) -> Spatial2DView {
 fn then_rope_view(shape_interval: f64) -> Spatial2DView {
     Spatial2DView::new(format!(
         "Rope then: at the time cursor (kept every {} time units; scrub the timeline)",
-        trim(shape_interval)
+        trimmed_fixed(shape_interval, 3)
     ))
     .with_origin("then")
-}
-
-/// A number as short as it reads: 1, 0.5, 2.5.
-fn trim(x: f64) -> String {
-    let text = format!("{x:.3}");
-    text.trim_end_matches('0').trim_end_matches('.').to_owned()
 }
 
 /// The rope, coloured by tension, with its support, tip, trail and colour scale; the title

@@ -10,6 +10,7 @@
 use super::live::HistoryRates;
 use super::logger::RopeLogger;
 use crate::model::{Energy, Point};
+use crate::run::config::trimmed_fixed;
 use crate::run::cost::Cost;
 use crate::run::estimate::ErrorEstimate;
 use crate::run::simulate::Lane;
@@ -93,7 +94,10 @@ impl Budget {
             format!("about {:.0} minutes", days * 24.0 * 60.0)
         };
         let pace = if self.paced {
-            format!("{} time units a second", trim(self.units_per_second))
+            format!(
+                "{} time units a second",
+                trimmed_fixed(self.units_per_second, 3)
+            )
         } else {
             format!(
                 "about {:.0} time units a second (as fast as it runs, predicted)",
@@ -111,12 +115,6 @@ impl Budget {
         }
         text
     }
-}
-
-/// A number as short as it reads.
-fn trim(x: f64) -> String {
-    let text = format!("{x:.3}");
-    text.trim_end_matches('0').trim_end_matches('.').to_owned()
 }
 
 /// The Arrow bytes of [`SAMPLE_UNITS`] time units of the history of `lanes`.

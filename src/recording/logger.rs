@@ -116,6 +116,17 @@ impl LaneLog {
     }
 }
 
+/// The colour and name of the method `frame` is of, among `lanes` (dark grey and no name
+/// if none owns it).
+fn style_of(lanes: &[LaneLog], frame: &Frame) -> (rerun::Color, &'static str) {
+    lanes
+        .iter()
+        .find(|l| l.owns(frame))
+        .map_or((rerun::Color::from_rgb(20, 20, 20), ""), |l| {
+            (l.colour, l.name)
+        })
+}
+
 /// A paced run sends each frame's shapes at once, but gathers the time series of up to this
 /// many frames (or [`SERIES_WAIT`]) into one chunk per series: each chunk carries its own
 /// schema, about 1.5 kB, and sending seven series a frame made a paced stream five times
@@ -554,19 +565,8 @@ impl RopeLogger {
             step: (step_offset + instants[i][0].step) as i64,
             frames: instants[i].iter().map(|&f| f.clone()).collect(),
         }));
-        let kept = match self.keeping {
-            Keeping::Everything => instants.clone(),
-            Keeping::History(_) => Vec::new(),
-        };
         let live_due = self.live.as_mut().is_some_and(LivePicture::due);
-        let lane_of = |f: &Frame| {
-            self.lanes
-                .iter()
-                .find(|l| l.owns(f))
-                .map_or((rerun::Color::from_rgb(20, 20, 20), ""), |l| {
-                    (l.colour, l.name)
-                })
-        };
+        let lane_of = |f: &Frame| style_of(&self.lanes, f);
         let times = |instants: &[Vec<&Frame>]| {
             vec![rerun::TimeColumn::new_duration_secs(
                 SIM_TIME,
@@ -574,8 +574,8 @@ impl RopeLogger {
             )]
         };
         let shared = [path::SEGMENTS, path::TIPS, path::PROFILES];
-        if !kept.is_empty() {
-            SharedShapes::of(&kept, lane_of).send(&self.rec, shared, times(&kept))?;
+        if self.keeping == Keeping::Everything && !instants.is_empty() {
+            SharedShapes::of(&instants, lane_of).send(&self.rec, shared, times(&instants))?;
         }
         if live_due && let (Some(live), Some(now)) = (&self.live, instants.last()) {
             // Static: one instant, which replaces the one before.
@@ -584,8 +584,6 @@ impl RopeLogger {
                 shared,
                 Vec::new(),
             )?;
-        }
-        if live_due && let Some(now) = instants.last() {
             self.log_live_caption(offset + now[0].time)?;
         }
         Ok(())
@@ -631,8 +629,7 @@ impl RopeLogger {
         Ok(())
     }
 
-    /// Sends the history's shapes of the rope gathered so far, and sets when the history
-    /// sends next.
+    /// Sends the history's shapes of the rope gathered so far.
     fn send_then(&mut self) -> rerun::RecordingStreamResult<()> {
         if self.then.is_empty() {
             return Ok(());
@@ -640,16 +637,8 @@ impl RopeLogger {
         let then = std::mem::take(&mut self.then);
         let times = timelines(then.iter().map(|t| t.time), then.iter().map(|t| t.step));
         let instants: Vec<Vec<&Frame>> = then.iter().map(|t| t.frames.iter().collect()).collect();
-        let lanes = &self.lanes;
-        let shapes = SharedShapes::of(&instants, |f: &Frame| {
-            lanes
-                .iter()
-                .find(|l| l.owns(f))
-                .map_or((rerun::Color::from_rgb(20, 20, 20), ""), |l| {
-                    (l.colour, l.name)
-                })
-        });
-        if lanes.len() > 1 {
+        let shapes = SharedShapes::of(&instants, |f: &Frame| style_of(&self.lanes, f));
+        if self.lanes.len() > 1 {
             return shapes.send(
                 &self.rec,
                 [path::THEN_SEGMENTS, path::THEN_TIPS, ""],

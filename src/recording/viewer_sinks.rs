@@ -469,7 +469,8 @@ const LIVE_WAIT: Duration = Duration::from_millis(500);
 /// to take each batch before the next, and messages that find the queue in front of it full
 /// are dropped (and counted). The process's memory stays bounded whoever reads how slowly.
 pub struct LiveSink {
-    queue: Option<Sender<LogMsg>>,
+    /// Closed when the sink is dropped: the thread sends what is left, then ends.
+    queue: Sender<LogMsg>,
     dropped: LiveDropped,
 }
 
@@ -481,7 +482,7 @@ impl LiveSink {
             .name("rope_live_picture".to_owned())
             .spawn(move || forward_live(server, &messages))?;
         Ok(Self {
-            queue: Some(queue),
+            queue,
             dropped: LiveDropped::default(),
         })
     }
@@ -526,9 +527,7 @@ fn closed(messages: &Receiver<LogMsg>) -> bool {
 
 impl LogSink for LiveSink {
     fn send(&self, msg: LogMsg) {
-        if let Some(queue) = &self.queue
-            && queue.try_send(msg).is_err()
-        {
+        if self.queue.try_send(msg).is_err() {
             self.dropped.add();
         }
     }
@@ -540,11 +539,5 @@ impl LogSink for LiveSink {
 
     fn default_batcher_config(&self) -> ChunkBatcherConfig {
         ChunkBatcherConfig::LOW_LATENCY
-    }
-}
-
-impl Drop for LiveSink {
-    fn drop(&mut self) {
-        self.queue = None; // the thread sends what is left, then ends
     }
 }

@@ -228,6 +228,17 @@ pub fn short_step(dt: f64) -> String {
     trimmed_scientific(dt, 3)
 }
 
+/// `value` with at most `decimals` digits after the point, trailing zeros dropped: 1.5, 2,
+/// 0.25 (not 2.000).
+pub fn trimmed_fixed(value: f64, decimals: usize) -> String {
+    let text = format!("{value:.decimals$}");
+    if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.').to_owned()
+    } else {
+        text
+    }
+}
+
 /// `value` in scientific notation with at most `decimals` digits after the point, trailing
 /// zeros dropped: 1.5e-3, 2e-3 (not 2.00e-3).
 pub fn trimmed_scientific(value: f64, decimals: usize) -> String {

@@ -86,12 +86,7 @@ fn tick(v: &f64) -> String {
         "0".to_owned()
     } else if (1e-2..1e4).contains(&a) {
         let digits = (3 - a.log10().floor() as i32 - 1).max(0) as usize;
-        let text = format!("{v:.digits$}");
-        if text.contains('.') {
-            text.trim_end_matches('0').trim_end_matches('.').to_owned()
-        } else {
-            text
-        }
+        crate::run::config::trimmed_fixed(*v, digits)
     } else {
         // Three significant digits, trailing zeros dropped: ticks 5e-4 apart near 2e-3 read
         // 1.5e-3, 2e-3, 2.5e-3, not 2e-3 twice.
