@@ -403,3 +403,27 @@ fn service_flags_that_cannot_work_exit_2_naming_the_flag() {
         assert!(stderr.contains(named), "{args:?}: {stderr}");
     }
 }
+
+#[test]
+fn a_default_page_lasts_a_week_three_methods_three_days_at_any_pace() {
+    use clap::Parser as _;
+    use rope::cli::{Cli, Command};
+    use rope::recording::budget::Budget;
+    let budget = |extra: &[&str]| {
+        let mut args = vec!["rope", "run", "--duration", "inf", "--web"];
+        args.extend_from_slice(extra);
+        let Command::Run(run) = Cli::try_parse_from(&args).unwrap().command else {
+            unreachable!()
+        };
+        let plans = run.plans().unwrap();
+        Budget::measure(&plans[0].lanes(), run.output.history_rates())
+    };
+    let one = budget(&["--realtime"]);
+    let three = budget(&["--realtime", "--method", "seed,chain,midpoint"]);
+    assert!(one.days() >= 7.0, "{one:?}: {} days", one.days());
+    assert!(three.days() >= 3.0, "{three:?}: {} days", three.days());
+    // The history goes by simulated time: a faster pace sends the same bytes per time unit.
+    let fast = budget(&["--realtime", "30"]);
+    assert_eq!(fast.bytes_per_unit, one.bytes_per_unit);
+    assert!((one.days() / fast.days() - 30.0).abs() < 1e-9);
+}

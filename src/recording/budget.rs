@@ -3,12 +3,13 @@
 //! viewer's ceiling.
 //!
 //! The bytes are not modelled but measured: the run's own logger writes a stretch of
-//! history ([`SAMPLE_UNITS`] time units of frames shaped like the run's) into memory, and
+//! history (frames shaped like the run's, [`SAMPLE_UNITS`] time units past the
+//! [`WARM_UP_UNITS`] in which it sends more often) into memory, and
 //! the Arrow data it sends is counted. A viewer holds more than the bytes it is sent (its
 //! indices and caches): [`VIEWER_PER_BYTE`] is that ratio, measured in a browser.
 
 use super::live::HistoryRates;
-use super::logger::RopeLogger;
+use super::logger::{HISTORY_SEND_UNITS, RopeLogger};
 use crate::model::{Energy, Point};
 use crate::run::config::trimmed_fixed;
 use crate::run::cost::Cost;
@@ -36,7 +37,14 @@ pub const PAGE_BASELINE: f64 = 630.0e6;
 pub const VIEWER_PER_BYTE: f64 = 1.1;
 
 /// Time units of history written to measure its bytes.
-pub const SAMPLE_UNITS: f64 = 40.0;
+pub const SAMPLE_UNITS: f64 = 4.0 * HISTORY_SEND_UNITS;
+
+/// Time units of history written, and not counted, before the sample: after a start the
+/// history sends sooner (at 2, 4, 8, 16 and 32), so that a page's plots fill soon; from
+/// then on it sends every [`HISTORY_SEND_UNITS`], which is what a page left open pays. A
+/// sample a whole number of those intervals long, past the warm-up, holds exactly its
+/// time units of history, whatever the sends' phase.
+pub const WARM_UP_UNITS: f64 = 2.0 * HISTORY_SEND_UNITS;
 
 /// What one time unit of a run's history costs, and how fast the run goes through them.
 #[derive(Clone, Copy, Debug)]
@@ -117,7 +125,8 @@ impl Budget {
     }
 }
 
-/// The Arrow bytes of [`SAMPLE_UNITS`] time units of the history of `lanes`.
+/// The Arrow bytes of [`SAMPLE_UNITS`] time units of the history of `lanes`, past its
+/// [`WARM_UP_UNITS`].
 fn history_bytes(lanes: &[RunPlan], rates: HistoryRates) -> Option<f64> {
     let (rec, storage) = rerun::RecordingStreamBuilder::new("rope-budget")
         .memory()
@@ -131,9 +140,10 @@ fn history_bytes(lanes: &[RunPlan], rates: HistoryRates) -> Option<f64> {
     logger.flush().ok()?;
     storage.take(); // what never changes: it does not grow
     let rate = lanes.first()?.log_rate;
-    let frames = (SAMPLE_UNITS * rate).round() as u64;
+    let warm_up = (WARM_UP_UNITS * rate).round() as u64;
+    let last = ((WARM_UP_UNITS + SAMPLE_UNITS) * rate).round() as u64;
     let side_by_side = lanes.len() > 1;
-    for j in 0..=frames {
+    for j in 0..=last {
         let time = j as f64 / rate;
         let batch: Vec<Frame> = lanes
             .iter()
@@ -141,17 +151,28 @@ fn history_bytes(lanes: &[RunPlan], rates: HistoryRates) -> Option<f64> {
             .map(|(i, p)| sample_frame(p, j, time, side_by_side.then_some(i)))
             .collect();
         logger.frames(&batch).ok()?;
+        if j == warm_up {
+            // What the warm-up sent is not counted; what it gathered goes with the next send,
+            // and is.
+            rec.flush_blocking().ok()?;
+            storage.take();
+        }
     }
-    logger.flush().ok()?;
-    let bytes: usize = storage
+    // Through the last send, at the sample's end; not the gathering a flush would send.
+    rec.flush_blocking().ok()?;
+    Some(arrow_bytes(&storage))
+}
+
+/// The Arrow bytes of the messages `storage` holds, taken out of it.
+fn arrow_bytes(storage: &rerun::sink::MemorySinkStorage) -> f64 {
+    storage
         .take()
         .iter()
         .map(|msg| match msg {
-            rerun::log::LogMsg::ArrowMsg(_, arrow) => arrow.batch.get_array_memory_size(),
-            _ => 0,
+            rerun::log::LogMsg::ArrowMsg(_, arrow) => arrow.batch.get_array_memory_size() as f64,
+            _ => 0.0,
         })
-        .sum();
-    Some(bytes as f64)
+        .sum()
 }
 
 /// A frame shaped like one of `plan`'s: its N segments hanging in a swinging arc, their

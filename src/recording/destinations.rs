@@ -505,7 +505,7 @@ fn parse_history_rate(text: &str) -> Result<f64, String> {
     match text.parse::<f64>() {
         Ok(rate) if rate.is_finite() && rate > 0.0 && rate <= 1e4 => Ok(rate),
         _ => Err(format!(
-            "{text}: give the rows of time series kept per time unit, a number above 0 (1.5 keeps about 9 days in a browser page; at most 10000)"
+            "{text}: give the rows of time series kept per time unit, a number above 0 (1.5 keeps about 10 days in a browser page; at most 10000)"
         )),
     }
 }

@@ -45,7 +45,7 @@ impl HistoryRates {
     pub const SHAPES_PER_ROW: f64 = 1.0 / 3.0;
 
     /// The default: 1.5 rows per time unit and a shape every 2 time units, which a browser
-    /// page holds for about 9 days of a run of one method at realtime, 4 days of three side
+    /// page holds for about 10 days of a run of one method at realtime, 5 days of three side
     /// by side (the budget the run prints).
     pub const DEFAULT: Self = Self::at(1.5);
 
