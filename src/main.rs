@@ -105,8 +105,9 @@ fn run(args: &RunArgs) -> anyhow::Result<ExitCode> {
         let budget = Budget::measure(&lanes, rates);
         let text = budget.text();
         eprintln!(
-            "rope: viewers get a live picture that replaces itself and a history of {} rows of each plot and {} shapes of the rope per time unit (--history-rate); {text}",
-            rates.series_per_unit, rates.shapes_per_unit
+            "rope: viewers get a live picture that replaces itself and a history: {} rows of each plot per time unit and the rope's shape every {} time units (--history-rate); {text}",
+            rates.series_per_unit,
+            rope::run::config::trimmed_fixed(rates.shape_interval(), 3)
         );
         for logger in &mut loggers {
             logger.note_in_parameters(format!("**For viewers:** {text}."));

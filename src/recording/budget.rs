@@ -102,10 +102,10 @@ impl Budget {
             format!("about {:.0} minutes", days * 24.0 * 60.0)
         };
         let pace = if self.paced {
-            format!(
-                "{} time units a second",
-                trimmed_fixed(self.units_per_second, 3)
-            )
+            match trimmed_fixed(self.units_per_second, 3).as_str() {
+                "1" => "1 time unit a second (--realtime)".to_owned(),
+                speed => format!("{speed} time units a second (--realtime {speed})"),
+            }
         } else {
             format!(
                 "about {:.0} time units a second (as fast as it runs, predicted)",
