@@ -3,19 +3,24 @@
 # run headless (--save to a scratch file) with a short duration. Every exit must be 0 (ran),
 # 2 (bad input, named), 3 (diverged, said when), or 1 with a stated error; never a panic
 # (exit 101), a signal (128 + n) or a run that does not end within 30 s (124).
+# With --study, the same for `rope study`: small grids of odd flags, each written to a
+# scratch folder; it must end within 60 s (a study whose every run was refused once spun
+# for ever drawing a chart of nothing).
 #
-#   scripts/cli-fuzz.sh [--seed S] [--runs N]      # defaults: a random seed, 1000 runs
+#   scripts/cli-fuzz.sh [--seed S] [--runs N] [--study]   # defaults: a random seed, 1000 runs
 #
 # CI runs it with a fixed seed. Prints the seed, each failing command, and a count.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 seed=$RANDOM
 runs=1000
+study=false
 while (($#)); do
     case "$1" in
         --seed) seed="$2"; shift 2 ;;
         --runs) runs="$2"; shift 2 ;;
-        *) echo "usage: $0 [--seed S] [--runs N]" >&2; exit 2 ;;
+        --study) study=true; shift ;;
+        *) echo "usage: $0 [--seed S] [--runs N] [--study]" >&2; exit 2 ;;
     esac
 done
 RANDOM=$seed
@@ -43,11 +48,50 @@ counts=(0 1 2 3 4 5 10 100 1000 10000 100000000 18446744073709551615 -3 1.5 x ""
 durations=(0 0.001 0.01 0.02 -1 nan 1e300 "")
 steps=(0 -1 1 0.5 1e-3 1e-4 5e-3 1e-300 inf nan x "")
 
-echo "cli-fuzz: seed $seed, $runs runs"
+# The flags of a small `rope study`, odd values among them; sets `args`.
+study_args() {
+    args=(study --out "$scratch/study")
+    # Sane values mostly (so that most studies run and draw their charts), odd ones besides.
+    if ((RANDOM % 4)); then add --segments 4 8 16 32 "8,16" "16,8" "4,8,16,32"; else
+        add --segments "16,16" 0 -4 1 x "" 100000000; fi
+    if ((RANDOM % 4)); then add --dts 1e-3 3e-2 1e-2 "1e-3,3e-3" 0.3 1; else
+        add --dts "1e-3,1e-3" 0 -1e-3 nan inf x "" 1e-300; fi
+    ((RANDOM % 2)) && add --methods seed chain rattle midpoint "seed,chain" "seed,seed" x ""
+    ((RANDOM % 2)) && add --duration 0.1 0.3 1 0.1 0.3 1 0 -1 nan inf 1e300 x
+    ((RANDOM % 3 == 0)) && add --reference-segments 4 8 16 64 64 7 0 -2 x
+    ((RANDOM % 3 == 0)) && add --angle 0 1 30 90 30 60 91 -5 nan x
+    ((RANDOM % 6 == 0)) && args+=(--scene mode) && add --mode-number 1 2 0 && add --amplitude 0.05 0 nan
+    ((RANDOM % 6 == 0)) && add --max-memory 1MB 100MB 1KB 50% 0 x
+    ((RANDOM % 8 == 0)) && add --save "$scratch/study.rrd" /dev/null/s.rrd
+    true
+}
+
+what=runs
+$study && what="study runs"
+echo "cli-fuzz: seed $seed, $runs $what"
 failed=0
 declare -A exits=()
 started=$SECONDS
 for ((r = 1; r <= runs; r++)); do
+    if $study; then
+        study_args
+        timeout 60 "$rope" "${args[@]}" > /dev/null 2> "$scratch/err"
+        code=$?
+        [[ -n ${FUZZ_VERBOSE:-} ]] && echo "exit $code: rope ${args[*]}: $(grep -m1 'bad input\|error' "$scratch/err")"
+        exits[$code]=$((${exits[$code]:-0} + 1))
+        ok=false
+        case $code in
+            0 | 2) ok=true ;;
+            1) grep -q "rope: error:\|rope study: error:" "$scratch/err" && ok=true ;;
+        esac
+        grep -q "panicked" "$scratch/err" && ok=false
+        if ! $ok; then
+            failed=$((failed + 1))
+            echo "FAILED (exit $code): rope ${args[*]}"
+            sed 's/^/    /' "$scratch/err" | tail -5
+        fi
+        continue
+    fi
     # --yes lets a run of years start, as asked: it goes only with a run that ends.
     args=(run --save "$scratch/x.rrd")
     if ((RANDOM % 8 == 0)); then

@@ -1,6 +1,7 @@
 //! The study's charts, each drawn twice, as SVG and as PNG: work–precision, the stability
 //! map, and the report's Figs. 1–4.
 
+use super::axes::{linear_range, log_range};
 use super::grid::{Row, Status};
 use crate::methods::{MethodKind, REPORT};
 use crate::run::simulate::REFERENCE_STEP;
@@ -92,17 +93,6 @@ fn tick(v: &f64) -> String {
         // 1.5e-3, 2e-3, 2.5e-3, not 2e-3 twice.
         crate::run::config::trimmed_scientific(*v, 2)
     }
-}
-
-/// A log range covering `values` (positive ones), padded by a factor of 2 each way.
-fn log_range(values: impl Iterator<Item = f64>) -> Range<f64> {
-    let (lo, hi) = values
-        .filter(|v| *v > 0.0 && v.is_finite())
-        .fold((f64::MAX, f64::MIN), |(lo, hi), v| (lo.min(v), hi.max(v)));
-    if lo > hi {
-        return 1e-6..1.0;
-    }
-    lo / 2.0..hi * 2.0
 }
 
 fn segment_counts(rows: &[Row], method: MethodKind) -> Vec<usize> {
@@ -367,13 +357,7 @@ pub(crate) fn lines<DB: DrawingBackend>(
     root.fill(&WHITE)?;
     let xs = series.iter().flat_map(|s| s.2.iter().map(|p| p.0));
     let ys = series.iter().flat_map(|s| s.2.iter().map(|p| p.1));
-    let linear = |v: Vec<f64>| {
-        let (lo, hi) = v
-            .iter()
-            .fold((f64::MAX, f64::MIN), |(a, b), &x| (a.min(x), b.max(x)));
-        let pad = (hi - lo).abs().max(1e-12) * 0.05;
-        (lo - pad)..(hi + pad)
-    };
+    let linear = linear_range;
     let (xv, yv): (Vec<f64>, Vec<f64>) = (xs.collect(), ys.collect());
     // A linear axis through zero gets a tick computed as, say, −6e-17: it reads 0. (On a log
     // axis no tick is zero, and 1e-13 must stay 1e-13.)

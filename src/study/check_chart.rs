@@ -2,11 +2,13 @@
 //! error, one panel per method, one colour per scene, with the band of a factor 3 around
 //! equality.
 
+use super::axes::log_range;
 use super::charts::{Drawn, SANS, SIZE, legend};
 use super::estimate_check::{Cell, FACTOR, RESOLVED};
 use crate::methods::MethodKind;
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use std::ops::Range;
 use std::path::Path;
 
 /// One colour per scene, in the order the check lists them.
@@ -53,17 +55,8 @@ fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, cells: &[Cell]) -> Dr
             .map(|s| (s.truth, s.estimate))
             .collect::<Vec<_>>()
     };
-    let (lo, hi) = cells
-        .iter()
-        .flat_map(judged)
-        .fold((f64::MAX, f64::MIN), |(lo, hi), (t, e)| {
-            (lo.min(t).min(e), hi.max(t).max(e))
-        });
-    let (lo, hi) = if lo < hi {
-        (lo / 2.0, hi * 2.0)
-    } else {
-        (1e-8, 1.0)
-    };
+    let Range { start: lo, end: hi } =
+        log_range(cells.iter().flat_map(judged).flat_map(|(t, e)| [t, e]));
     let panels = root.split_evenly((1, methods.len().max(1)));
     for (panel, &method) in panels.iter().zip(&methods) {
         let mut chart = ChartBuilder::on(panel)

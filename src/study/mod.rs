@@ -16,6 +16,7 @@
 //!   and against the cheapest run of a grid; [`tolerance_chart`]: its chart.
 
 pub mod atlas_chart;
+pub mod axes;
 pub mod blow_up;
 pub mod charts;
 pub mod check_chart;

@@ -2,10 +2,12 @@
 //! `--tolerance` did (pilots included) against the CPU of the grid's cheapest run that holds
 //! EPS, log–log, with the lines of equal cost and of 3 times it.
 
+use super::axes::log_range;
 use super::charts::{Drawn, SANS, legend, render_chart};
 use super::tolerance_check::{CPU_FACTOR, Cell};
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use std::ops::Range;
 use std::path::Path;
 
 /// One colour per tolerance, from the loosest.
@@ -29,16 +31,11 @@ fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, cells: &[Cell]) -> Dr
             Some((cheapest.seconds, chosen.seconds + c.pilot_seconds, c))
         })
         .collect();
-    let (lo, hi) = points
-        .iter()
-        .fold((f64::MAX, f64::MIN), |(lo, hi), &(x, y, _)| {
-            (lo.min(x).min(y), hi.max(x).max(y))
-        });
-    let (lo, hi) = if lo < hi {
-        (lo.max(1e-5) / 2.0, hi * 2.0)
-    } else {
-        (1e-4, 10.0)
-    };
+    let Range { start: lo, end: hi } = log_range(
+        points
+            .iter()
+            .flat_map(|&(x, y, _)| [x.max(1e-5), y.max(1e-5)]),
+    );
     let mut chart = ChartBuilder::on(root)
         .caption(
             "--tolerance's CPU (pilots included) against the grid's cheapest run that holds EPS",
