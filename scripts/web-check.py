@@ -342,6 +342,9 @@ def main() -> int:
     for log in [log for log in logs if streaming(log)][:1]:
         print(f"web-check: the page logged: {log.strip()[:200]}")
     print(f"web-check: screenshot {args.screenshot} ({len(shot)} bytes), rope exited {code}")
+    # How far the run went: its summary's first line per method ("… steps to t = …").
+    for line in [line for line in said if " steps to t = " in line]:
+        print(f"web-check: rope said: {line.strip()[:200]}")
     for failure in failures:
         print(f"web-check: FAILED: {failure}")
     print(f"web-check: {0 if failures else 1} passed, {1 if failures else 0} failed")

@@ -14,19 +14,56 @@ use std::path::PathBuf;
 
 /// Simulate an inextensible string swinging under gravity and stream it to the Rerun viewer.
 #[derive(Debug, clap::Parser)]
-#[command(name = "rope", version, about)]
+#[command(name = "rope", version, about, max_term_width = 80)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,
 }
 
+/// What `rope run --help` ends with: examples and what the exit status says.
+const RUN_EXAMPLES: &str = "\
+Examples:
+  rope run --save swing.rrd
+      the report's run (seed, N = 100, from 30°) into a file
+  rope run --web --realtime --duration inf
+      a page to leave open: the rope live, its history to scrub
+  rope run --method seed,chain,midpoint --angle 60 --save three.rrd
+      three methods side by side on the same frame times
+  rope run --tolerance 1e-3 --save chosen.rrd
+      method, N and step chosen for a tip error of at most 1e-3
+
+Exit status:
+  0    the run ended as asked
+  1    an error, said (a recording that could not be completed among them)
+  2    bad input, naming the flag and what would work
+  3    a method diverged: said when and why, its frames until then kept
+  130  interrupted (Ctrl-C or SIGTERM): the frames until then kept, the file valid";
+
+/// What `rope study --help` ends with: examples and what the exit status says.
+const STUDY_EXAMPLES: &str = "\
+Examples:
+  rope study --segments 16,32 --dts 1e-3,3e-3 --out small
+      a small grid in seconds: study.csv, findings.md and the charts
+  rope study --out study
+      the default grid (210 runs, about 6 minutes on two cores)
+  rope study --blow-up 200 --out blow-up
+      when the report's scheme blows up, against N and k
+
+Exit status:
+  0    the study was written
+  1    an error, said
+  2    bad input, naming the flag and what would work (a grid none of whose
+       methods can start from the scene among them)";
+
 /// What to do.
 #[derive(Debug, clap::Subcommand)]
 pub enum Command {
     /// Simulate one scene and stream it to a viewer, an .rrd file or stdout.
+    #[command(after_help = RUN_EXAMPLES)]
     Run(RunArgs),
     /// Run a grid of simulations (methods × segments × time steps) and chart speed against
     /// accuracy, stability, and the report's figures.
+    #[command(after_help = STUDY_EXAMPLES)]
     Study(StudyArgs),
 }
 
@@ -250,6 +287,24 @@ pub fn reference_file(
 }
 
 /// Every study step must be a positive, finite number.
+/// Refuses a list of a study's grid values with one given twice (it would run twice).
+fn repeated<T: PartialEq + std::fmt::Display>(
+    flag: &'static str,
+    values: &[T],
+) -> Result<(), ConfigError> {
+    match values
+        .iter()
+        .enumerate()
+        .find(|(i, v)| values[..*i].contains(v))
+    {
+        Some((_, v)) => Err(ConfigError::StudyRepeated {
+            flag,
+            value: v.to_string(),
+        }),
+        None => Ok(()),
+    }
+}
+
 fn check_dts(dts: &[f64]) -> Result<(), ConfigError> {
     match dts.iter().find(|dt| !(dt.is_finite() && **dt > 0.0)) {
         Some(&dt) => Err(ConfigError::StudyTimeStep(dt)),
@@ -367,10 +422,35 @@ impl StudyArgs {
         if let Some(&segments) = self.segments.iter().find(|n| **n < min) {
             return Err(ConfigError::StudySegments { segments, min });
         }
+        repeated("segments", &self.segments)?;
+        repeated("dts", &dts)?;
         let finest = self.segments.iter().copied().max().unwrap_or(100);
         let reference_segments = self.reference_segments.unwrap_or(2 * finest);
         if reference_segments < 4 || !reference_segments.is_multiple_of(2) {
             return Err(ConfigError::ReferenceSegments(reference_segments));
+        }
+        if self.reference.is_none() && !self.reference_only && reference_segments <= finest {
+            return Err(ConfigError::ReferenceTooCoarse {
+                reference: reference_segments,
+                finest,
+                suggested: (finest + 2) & !1,
+            });
+        }
+        // A method that cannot start from the scene is refused at each of its runs (a row
+        // that says why); a study none of whose methods can start has nothing to measure.
+        let refusals: Vec<String> = self
+            .methods
+            .iter()
+            .filter_map(|m| {
+                let dt = dts.first().copied().unwrap_or(1e-3);
+                let err = m.build(&scene, m.descriptor().min_segments, dt).err()?;
+                Some(format!("{m}: {err}"))
+            })
+            .collect();
+        if !self.methods.is_empty() && refusals.len() == self.methods.len() {
+            return Err(ConfigError::StudyNothingStarts {
+                reasons: refusals.join("; "),
+            });
         }
         let spec = Spec {
             scene,
@@ -478,12 +558,14 @@ pub struct RunArgs {
     /// inf, --loop, --serve-grpc, --web), the one that keeps the energy at every frame
     /// (midpoint), as printed at the start]. A list (e.g. seed,chain,rattle)
     /// runs the methods side by side on the same frame times, in one recording: each at
-    /// --segments and its own default step (or --dt), brought down onto the frames' grid.
+    /// --segments and its own default step (or --dt), brought down so that 30 instants a
+    /// time unit fall on its steps (whatever --log-rate).
     #[arg(long, value_enum, value_delimiter = ',')]
     pub method: Vec<MethodKind>,
 
     /// Frames logged per time unit [default: 60; for several methods side by side, which
-    /// send a frame per method, 30]. Viewers of a served, endless or looping run get each
+    /// send a frame per method, 30, also the most: their frames fall on 30 shared instants a
+    /// time unit, nearest each frame's time]. Viewers of a served, endless or looping run get each
     /// frame as a live picture that replaces itself, and a history at --history-rate.
     #[arg(long, allow_negative_numbers = true, allow_hyphen_values = true)]
     pub log_rate: Option<f64>,
@@ -609,9 +691,9 @@ impl RunArgs {
     }
 
     /// Frames per time unit: as asked, or 60; side by side (a frame per method), 30. The
-    /// same wherever the recording goes, so that the steps (brought onto the frames' grid
-    /// side by side) and the outcome are the same: a served viewer gets a live picture and
-    /// a slow history, whatever the frame rate.
+    /// same wherever the recording goes: a served viewer gets a live picture and a slow
+    /// history, whatever the frame rate. The steps never depend on it (side by side they
+    /// are brought onto a fixed grid, `SHARED_FRAME_GRID`).
     pub fn log_rate(&self) -> f64 {
         self.log_rate
             .unwrap_or(if self.compares() { 30.0 } else { 60.0 })
@@ -662,10 +744,19 @@ impl RunArgs {
             None => (asked, None, None),
             Some(eps) => {
                 let (choice, pilots) = self.choose(eps, &scene)?;
+                // A loose tolerance may choose a step longer than the default frame
+                // interval: then a frame at every step the estimate's shadow shares (where
+                // the tolerance is watched), unless --log-rate asked for more.
+                let most = 1.0 / (choice.dt * crate::run::estimate::STRIDE as f64);
+                let log_rate = match self.log_rate {
+                    Some(rate) => rate,
+                    None => asked.log_rate.min(most),
+                };
                 let chosen = RunConfig {
                     method: choice.method,
                     segments: choice.segments,
                     dt: Some(choice.dt),
+                    log_rate,
                     ..asked
                 };
                 (chosen, Some(choice), Some(pilots))
@@ -744,7 +835,7 @@ pub struct MemorySize {
 
 /// `--max-memory SIZE`: 512MB, 8GB, or a share of the machine's memory (50%).
 fn parse_memory_size(text: &str) -> Result<MemorySize, String> {
-    match rerun::MemoryLimit::parse(text) {
+    match rerun::MemoryLimit::parse(&cost::size_spelling(text)) {
         Ok(limit) if !limit.is_unlimited() && limit.as_bytes() > 0 => Ok(MemorySize {
             bytes: limit.as_bytes(),
         }),

@@ -25,14 +25,27 @@ pub enum ConfigError {
         dt: f64,
         limit: f64,
     },
-    #[error("duration = {0}: must be a number of time units ≥ 0, or inf for an endless run")]
+    #[error(
+        "duration = {0}: must be a number of time units > 0 (a run of none takes no step and measures nothing), or inf for an endless run"
+    )]
     Duration(f64),
     #[error("log-rate = {0}: must be a finite number of frames per time unit > 0")]
     LogRate(f64),
     #[error(
-        "log-rate = {log_rate}: more frames per time unit than time steps at this step ({steps_per_unit:.0} per time unit); use --log-rate {steps_per_unit:.0} or less, or a smaller --dt"
+        "log-rate = {log_rate}: more frames per time unit than time steps at k = {dt:e} ({most_frames} steps a time unit); use --log-rate {most_frames} or less, or --dt {largest_dt} or less"
     )]
-    LogRateAboveSteps { log_rate: f64, steps_per_unit: f64 },
+    LogRateAboveSteps {
+        log_rate: f64,
+        dt: f64,
+        /// 1/k, rounded down to three digits: a rate that works.
+        most_frames: String,
+        /// 1/log_rate, rounded down to three digits: a step that works.
+        largest_dt: String,
+    },
+    #[error(
+        "log-rate = {log_rate}: side by side the frames fall on instants that every method's step divides, {grid} per time unit, so that no method's step depends on the frames; use --log-rate {grid} or less"
+    )]
+    LogRateAboveSharedGrid { log_rate: f64, grid: f64 },
     #[error(
         "tolerance = {0}: must be a finite tip error > 0, in string lengths (for example 1e-4)"
     )]
@@ -128,6 +141,20 @@ pub enum ConfigError {
         "reference-segments = {0}: must be an even number ≥ 4 (the reference is extrapolated from N and N/2)"
     )]
     ReferenceSegments(usize),
+    #[error(
+        "reference-segments = {reference}: no finer than the study's finest N = {finest}, so its tip errors would be measured below the reference's own resolution; use --reference-segments {suggested} or more (the default is twice the finest N)"
+    )]
+    ReferenceTooCoarse {
+        reference: usize,
+        finest: usize,
+        suggested: usize,
+    },
+    #[error("{flag}: {value} is given twice; list each value once")]
+    StudyRepeated { flag: &'static str, value: String },
+    #[error(
+        "methods: none of the study's methods can start from this scene, so it would have nothing to measure ({reasons}); add a method that can, for example --methods chain, or change the scene"
+    )]
+    StudyNothingStarts { reasons: String },
     #[error(
         "reference = {path}: it is the reference of the {theirs}; this study is of the {ours}; compute one with `rope study --reference-only` and the same scene, --duration and --reference-segments"
     )]

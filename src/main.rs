@@ -214,14 +214,14 @@ fn announce(args: &RunArgs, plans: &[Planned]) {
                 .map(|p| format!("{} k = {:.3e}", p.method, p.dt))
                 .collect();
             eprintln!(
-                "rope: side by side at N = {}, each at {} brought down onto the frames' grid ({} per time unit) so that all share every frame time: {}",
+                "rope: side by side at N = {}, each at {} brought down so that {} instants a time unit, shared by all, fall on its steps (the frames fall on them): {}",
                 plan.segments,
                 if args.dt.is_some() {
                     "--dt"
                 } else {
                     "its default step"
                 },
-                plan.log_rate,
+                plan.frame_grid.unwrap_or(plan.log_rate),
                 steps.join(", ")
             );
         } else if args.tolerance.is_none() && args.dt.is_none() {
@@ -288,6 +288,17 @@ fn pilot_lines(pilots: &rope::run::pilot::Pilots, duration: f64) -> String {
                 p.measured_by.map_or("", MethodKind::name)
             ),
             (None, _, None) if !p.flew() => "not flown".to_owned(),
+            (None, _, None) if p.measured.is_empty() && !p.shadow_lost.is_empty() => {
+                let lost: Vec<String> = p
+                    .shadow_lost
+                    .iter()
+                    .map(|(n, why)| format!("at N = {n}, {why}"))
+                    .collect();
+                format!(
+                    "not measured: the method ran, but its error estimate's coarser run (the shadow at N/2) diverged ({})",
+                    lost.join("; ")
+                )
+            }
             (None, _, Some(n)) => format!(
                 "{measured} → holds the tolerance at N = {n} by its own estimate (×{} safety)",
                 rope::run::pilot::SAFETY
@@ -623,6 +634,12 @@ fn study(args: &StudyArgs) -> anyhow::Result<ExitCode> {
         plan.reference_segments,
         if reference.is_some() { " (read)" } else { "" }
     );
+    for (asked, run) in spec.moved_dts() {
+        eprintln!(
+            "rope study: k = {asked:e} runs at {run:.4e}, the largest step no larger that ends each run at t = {}",
+            spec.duration
+        );
+    }
     let counter = Counter::new(cells, "rope study", "runs");
     let command = command_line();
     if let Some(shard) = args.shard {
@@ -661,6 +678,19 @@ fn study(args: &StudyArgs) -> anyhow::Result<ExitCode> {
             .context("writing the study recording")?;
     }
     println!("{}", outcome.markdown);
+    let findings = &outcome.findings;
+    for r in &findings.at_target {
+        if let Some(edge) = findings.edge(r) {
+            eprintln!(
+                "rope study: warning: {}'s cheapest run to a tip error of {:.0e} (N = {}, k = {:e}) is at the grid's edge, {}: a cheaper one may lie beyond it",
+                r.method,
+                rope::study::findings::TIP_TARGET,
+                r.segments,
+                r.dt,
+                edge.trim_matches('*')
+            );
+        }
+    }
     eprintln!(
         "rope study: wrote study.csv, findings.md and the charts to {}",
         args.out.display()

@@ -188,6 +188,48 @@ fn log_rate_not_positive_or_above_the_step_rate() {
     assert!(matches!(err, ConfigError::LogRateAboveSteps { .. }));
 }
 
+/// Too many frames for the step: the advice names a log rate and a step, and each works,
+/// even where the step is longer than a time unit (a rate below 1).
+#[test]
+fn too_many_frames_for_the_step_advise_a_rate_and_a_step_that_work() {
+    for (dt, log_rate) in [(1e-2, 1000.0), (10.0, 60.0), (3.0, 1.0), (0.7, 7.0)] {
+        let asked = RunConfig {
+            method: MethodKind::Midpoint,
+            dt: Some(dt),
+            log_rate,
+            allow_unstable: true,
+            ..report()
+        };
+        let Err(ConfigError::LogRateAboveSteps {
+            most_frames,
+            largest_dt,
+            ..
+        }) = asked.validate()
+        else {
+            panic!("k = {dt} at {log_rate} frames a time unit was not refused for its frames");
+        };
+        let rate: f64 = most_frames.parse().unwrap();
+        let step: f64 = largest_dt.parse().unwrap();
+        assert!(rate > 0.0 && step > 0.0, "{most_frames} {largest_dt}");
+        let fewer = RunConfig {
+            log_rate: rate,
+            ..asked.clone()
+        };
+        assert!(
+            fewer.validate().is_ok(),
+            "--log-rate {most_frames} at k = {dt}"
+        );
+        let finer = RunConfig {
+            dt: Some(step),
+            ..asked
+        };
+        assert!(
+            finer.validate().is_ok(),
+            "--dt {largest_dt} at --log-rate {log_rate}"
+        );
+    }
+}
+
 #[test]
 fn realtime_speed_not_positive() {
     let err = RunConfig {

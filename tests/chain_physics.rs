@@ -133,3 +133,12 @@ fn a_finer_step_refines_the_whips_too_energy_error_falls_as_k_to_the_fourth() {
         );
     }
 }
+
+#[test]
+fn a_hanging_string_holds_its_whole_weight_at_the_support() {
+    let hanging = Scene::Release { angle_deg: 90.0 };
+    let n = 50;
+    let chain = MethodKind::Chain;
+    let (outcome, frames) = run_frames(chain, hanging, n, chain.default_dt(n), 2.0, 10.0);
+    assert_holds_its_weight_at_the_support(&outcome, &frames);
+}

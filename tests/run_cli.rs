@@ -77,6 +77,7 @@ fn saved_recording_has_every_entity_one_strip_per_segment_and_one_frame_per_log_
         "status",
         "diverged",
         "wall_seconds",
+        "cpu_seconds",
         "ns_per_segment_step",
         "frames_logged",
         "energy",
@@ -517,8 +518,17 @@ fn sigterm_mid_run_behaves_like_sigint() {
 
 #[test]
 fn bad_inputs_exit_2_naming_the_parameter() {
-    let cases: [(&[&str], &str); 15] = [
+    let cases: [(&[&str], &str); 18] = [
         (&["--segments", "0"][..], "segments"),
+        // No step taken measures nothing (it printed an E_ref "after step 10" and a cost).
+        (&["--duration", "0"][..], "duration = 0"),
+        // A size is read in any case; a bad one names the flag.
+        (&["--max-memory", "1KB"][..], "max-memory"),
+        // Advice that works: a step longer than a frame interval names a rate and a step.
+        (
+            &["--method", "midpoint", "--dt", "10"][..],
+            "--log-rate 0.1 or less",
+        ),
         (&["--dt", "-1"][..], "dt"),
         (&["--dt", "-1e-3"][..], "dt"),
         (&["--angle", "-1e-3"][..], "angle"),
@@ -657,12 +667,42 @@ fn study_saves_its_chart_data_into_a_recording_and_reports_progress() {
 
 #[test]
 fn study_rejects_bad_grids_with_exit_2() {
-    let cases: [(&[&str], &str); 5] = [
+    let cases: [(&[&str], &str); 10] = [
         (&["--dts", "0"][..], "dts"),
         (&["--segments", "1"][..], "segments"),
         (&["--duration", "0"][..], "duration"),
         (&["--reference-segments", "41"][..], "reference-segments"),
         (&["--angle", "30,60"][..], "angle"),
+        // A reference no finer than the runs would measure errors below its own resolution.
+        (
+            &["--segments", "16", "--reference-segments", "8"][..],
+            "reference-segments = 8",
+        ),
+        (
+            &["--segments", "16", "--reference-segments", "16"][..],
+            "--reference-segments 18",
+        ),
+        // A value given twice would run twice.
+        (
+            &["--segments", "16,8,16"][..],
+            "segments: 16 is given twice",
+        ),
+        (&["--dts", "1e-3,1e-3"][..], "dts: 0.001 is given twice"),
+        // Every run refused (the seed cannot start from the horizontal): nothing to measure;
+        // such a study once wrote its files and then spun for ever drawing an empty chart.
+        (
+            &[
+                "--methods",
+                "seed",
+                "--angle",
+                "0",
+                "--segments",
+                "16",
+                "--dts",
+                "1e-3",
+            ][..],
+            "methods",
+        ),
     ];
     assert_each_exits_2_naming(&["study", "--out", "/nonexistent/never"], &cases);
 }

@@ -27,12 +27,20 @@ fn hanging_string_stays_put_with_tension_one_minus_s() {
             (phi - FRAC_PI_2).abs() < 1e-12,
             "segment {i} moved: φ = {phi}"
         );
-        let s = (i as f64 + 0.5) * h;
-        assert!(
-            (f - (1.0 - s)).abs() <= h,
-            "F({s}) = {f}, expected 1 − s to O(h)"
-        );
+        // F_i sits at s = (i + 1) h: F_{N−1} = 0 is the free end, and at rest the
+        // tension system (3)+(5) is linear in i.
+        let s = (i as f64 + 1.0) * h;
+        assert!((f - (1.0 - s)).abs() < 1e-9, "F({s}) = {f}, expected 1 − s");
     }
+    let (outcome, frames) = run_frames(
+        MethodKind::Seed,
+        Scene::Release { angle_deg: 90.0 },
+        n,
+        1e-3,
+        2.0,
+        10.0,
+    );
+    assert_holds_its_weight_at_the_support(&outcome, &frames);
 }
 
 #[test]

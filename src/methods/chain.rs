@@ -50,6 +50,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     // probed, with 3.3 times fewer steps (`scripts/tolerance-step.sh`).
     tolerance_step_fraction: Some(1.0),
     ns_per_segment_step: 170.0,
+    tension_first_at: 0.5,
     discretization: "rods",
     // Seven f64 vectors of RK4, and the joint-force solve's 2×2 gain and four 2-vectors.
     bytes_per_segment: 7 * 8 + 4 * 8 + 4 * 16,

@@ -6,8 +6,9 @@ use super::error_model::ErrorModel;
 use crate::error::{ConfigError, Diverged};
 use crate::model::{Energy, Scene};
 
-/// Largest tension of a swing from rest, in m g (the support tension stays below about 5/4,
-/// the report): what the stability limits are written for.
+/// The tension the stability limits are written for, in m g: about that of a swing from
+/// rest in its first time units (the report saw the support tension below 5/4 in its short
+/// runs; a long swing's whips reach 3, where the rods take substeps).
 pub const TENSION_MAX: f64 = 1.5;
 
 /// What [`Descriptor::tolerance_dt`] divides into whole steps: half the interval of the default
@@ -68,7 +69,9 @@ pub trait Method: Send {
     fn step(&mut self) -> Result<(), Diverged>;
     /// Total energy now (eqs. 13–16), second-order accurate in the time step.
     fn energy(&self) -> Energy;
-    /// Tension at the support, F_0, from the latest solve.
+    /// The tension at the support, s = 0, from the latest solve: the force the support
+    /// bears along the string (a string hanging at rest: m g = 1, whatever N). Not the first
+    /// of `Observation::tension`, which sits [`Descriptor::tension_first_at`] segments below.
     fn support_tension(&self) -> f64;
     /// The segment angles φ_i now, support … tip: the shape, without solving for anything.
     fn angles(&self) -> &[f64];
@@ -116,6 +119,14 @@ pub fn round_down_nicely(x: f64) -> f64 {
 pub fn whole_division(interval: f64, dt: f64) -> f64 {
     let steps = (interval / dt - 1e-9).ceil().max(1.0);
     interval / steps
+}
+
+/// The tension at the support of a string at rest, from its first rod's tension `first`
+/// (at the rod's middle, h/2 below) and that rod's angle: at rest the tension's slope along
+/// the string is gravity's alone, F_s = −sin φ, so F(0) = F_first + (h/2) sin φ_0. What the
+/// rods report before their first step, whose solves then give the support's force itself.
+pub fn support_tension_at_rest(first: f64, angle: f64, segments: usize) -> f64 {
+    first + 0.5 / segments.max(1) as f64 * angle.sin()
 }
 
 /// Checks what every method needs of a time step.
@@ -231,6 +242,11 @@ pub struct Descriptor {
     pub tolerance_step_fraction: Option<f64>,
     /// CPU cost of one step per segment, in ns (`cargo bench --bench step`, N = 1000).
     pub ns_per_segment_step: f64,
+    /// Where the first of the method's tensions (`Observation::tension`) sits along the
+    /// string, in segments from the support; the others follow a segment apart. The rods'
+    /// tension acts along each rod: 0.5, its middle. The seed's F_i sit at s = (i + 1) h
+    /// (F_{N−1} = 0 is the free end): 1.
+    pub tension_first_at: f64,
     /// What the method discretizes the string into. Methods of one discretization share its
     /// spatial error: at their tolerance steps their worst tip errors agree to within the
     /// probe's scatter (`scripts/tolerance-step.sh`), so `--tolerance`'s pilots fly only the

@@ -89,6 +89,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     tolerance_step_fraction: Some(1.0),
     // A pair of steps and its projection (`cargo bench --bench step`, N = 1000).
     ns_per_segment_step: 348.0,
+    tension_first_at: 0.5,
     discretization: "rods",
     // The state (centre, angle, tangent, velocity, rate: 64), Newton's unknowns and guesses
     // (Δθ, μ, two past μ/k²: 56), its per-rod and per-joint blocks (slope, F, U, gap, y,
@@ -290,7 +291,11 @@ impl Midpoint {
         midpoint.energy_start = midpoint.energy().total();
         let mut at_rest = Observation::default();
         midpoint.observe(&mut at_rest);
-        midpoint.support_tension = at_rest.tension.first().copied().unwrap_or(0.0);
+        midpoint.support_tension = method::support_tension_at_rest(
+            at_rest.tension.first().copied().unwrap_or(0.0),
+            at_rest.angle.first().copied().unwrap_or(0.0),
+            n,
+        );
         Ok(midpoint)
     }
 

@@ -77,6 +77,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     // (N = 64, `scripts/tolerance-step.sh`): its tolerance keeps the default.
     tolerance_step_fraction: None,
     ns_per_segment_step: 71.0,
+    tension_first_at: 0.5,
     discretization: "rods",
     // Two states (centre, angle, tangent and the momenta), the substep's start, A's normals,
     // pivots, off-diagonals and gains, two 2-vector scratches, the observer's joint-force
@@ -197,7 +198,11 @@ impl Rattle {
         rattle.matrix.factorise(&rattle.now.tangent);
         let mut at_rest = Observation::default();
         rattle.observe(&mut at_rest);
-        rattle.support_tension = at_rest.tension.first().copied().unwrap_or(0.0);
+        rattle.support_tension = method::support_tension_at_rest(
+            at_rest.tension.first().copied().unwrap_or(0.0),
+            at_rest.angle.first().copied().unwrap_or(0.0),
+            n,
+        );
         Ok(rattle)
     }
 

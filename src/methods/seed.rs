@@ -57,6 +57,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     // The scheme blows up past its limit: its tolerance runs at the default step.
     tolerance_step_fraction: None,
     ns_per_segment_step: 10.2,
+    tension_first_at: 1.0,
     discretization: "finite differences",
     // φ at three times, the tension, and the sweep's two scratch vectors.
     bytes_per_segment: 6 * 8,
@@ -273,7 +274,10 @@ impl Method for Seed {
     }
 
     fn support_tension(&self) -> f64 {
-        self.tension[0]
+        // F_i sits at s = (i + 1) h. The support condition (5), F_1 − F_0 = −h sin φ_0, is
+        // the tension's slope at the support: one step of it above F_0 reaches s = 0.
+        let h = 1.0 / self.phi.len().max(1) as f64;
+        self.tension[0] + h * self.phi.first().map_or(0.0, |p| p.sin())
     }
 
     fn angles(&self) -> &[f64] {

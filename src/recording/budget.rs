@@ -196,6 +196,7 @@ fn sample_frame(plan: &RunPlan, step: u64, time: f64, lane: Option<usize>) -> Fr
         time,
         nodes,
         tension,
+        tension_first_at: 0.5,
         energy: Energy {
             translational: 0.2 + 0.1 * time.sin(),
             rotational: 1e-3,

@@ -525,7 +525,7 @@ impl std::fmt::Display for ServerMemoryLimit {
 
 /// `--server-memory-limit SIZE`.
 fn parse_memory_limit(text: &str) -> Result<ServerMemoryLimit, String> {
-    match rerun::MemoryLimit::parse(text) {
+    match rerun::MemoryLimit::parse(&crate::run::cost::size_spelling(text)) {
         Ok(limit) if limit.as_bytes() >= MIN_SERVER_MEMORY => Ok(ServerMemoryLimit {
             text: text.to_owned(),
             limit,

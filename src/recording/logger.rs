@@ -1012,14 +1012,18 @@ impl SharedShapes {
     }
 }
 
-/// F(s) of a frame drawn upward: x = s at each segment's middle, y = −F (the 2D view's y
-/// points down).
+/// F(s) of a frame drawn upward, y = −F (the 2D view's y points down): first the tension at
+/// the support, s = 0, then each of the method's tensions where it sits (the rods' at each
+/// rod's middle, the seed's a segment below each node: `Frame::tension_first_at`).
 fn profile(f: &Frame) -> Vec<[f32; 2]> {
-    let n = f.tension.len() as f32;
-    f.tension
-        .iter()
-        .enumerate()
-        .map(|(i, &t)| [(i as f32 + 0.5) / n, -(t as f32)])
+    let n = f.tension.len() as f64;
+    std::iter::once([0.0, -(f.support_tension as f32)])
+        .chain(
+            f.tension
+                .iter()
+                .enumerate()
+                .map(|(i, &t)| [((i as f64 + f.tension_first_at) / n) as f32, -(t as f32)]),
+        )
         .collect()
 }
 

@@ -149,6 +149,31 @@ pub fn available_memory() -> Option<u64> {
     Some(kb * 1024)
 }
 
+/// A memory size as people write it, in the spelling Rerun's `MemoryLimit::parse` reads:
+/// units in any case (`512mb`, `64KB`, `2 GiB`), decimal (kB, MB, GB, TB) or binary (KiB,
+/// MiB, GiB, TiB); a share of the machine (`50%`) and bare bytes (`100B`) are left as they
+/// are.
+pub fn size_spelling(text: &str) -> String {
+    let text = text.trim();
+    let digits = text
+        .find(|c: char| c.is_ascii_alphabetic())
+        .unwrap_or(text.len());
+    let (number, unit) = text.split_at(digits);
+    let unit = match unit.to_ascii_lowercase().as_str() {
+        "b" => "B",
+        "kb" => "kB",
+        "mb" => "MB",
+        "gb" => "GB",
+        "tb" => "TB",
+        "kib" => "KiB",
+        "mib" => "MiB",
+        "gib" => "GiB",
+        "tib" => "TiB",
+        _ => return text.to_owned(),
+    };
+    format!("{}{unit}", number.trim())
+}
+
 /// A size for people: "512 MB", "3.2 GB".
 pub fn bytes_text(bytes: u64) -> String {
     let b = bytes as f64;
@@ -177,5 +202,30 @@ pub fn seconds_text(seconds: f64) -> String {
         format!("{:.0} days", s / 86_400.0)
     } else {
         format!("{:.1e} years", seconds / (365.25 * 86_400.0))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::size_spelling;
+
+    #[test]
+    fn sizes_are_read_in_any_case_and_shares_and_bytes_are_left_alone() {
+        for (typed, read) in [
+            ("512KB", "512kB"),
+            ("512kb", "512kB"),
+            ("64 mb", "64MB"),
+            ("2gib", "2GiB"),
+            ("1.5GB", "1.5GB"),
+            ("100B", "100B"),
+            ("50%", "50%"),
+            ("lots", "lots"),
+        ] {
+            assert_eq!(size_spelling(typed), read, "{typed}");
+            assert!(
+                rerun::MemoryLimit::parse(&size_spelling(typed)).is_ok() || typed == "lots",
+                "{typed}"
+            );
+        }
     }
 }

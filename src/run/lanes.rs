@@ -1,7 +1,7 @@
 //! Several methods side by side (`--method A,B,…`): one simulation thread per method, and
 //! the sink thread taking frame j of every method still running before frame j + 1 of any,
-//! so the runs go in lockstep on the same frame times (each one's step brought onto the
-//! frames' grid, [`super::simulate::step_on_frame_grid`]). It measures how far each string is
+//! so the runs go in lockstep on the same frame times (each one's step brought onto a fixed
+//! grid of shared instants, [`super::config::SHARED_FRAME_GRID`], that the frames fall on). It measures how far each string is
 //! from the most accurate one's at every frame; a method that fails stops alone, and the
 //! others go on.
 

@@ -51,6 +51,10 @@ pub struct Pilot {
     pub held_at: Option<usize>,
     /// Why a pilot of this method diverged, if one did: the method is ruled out.
     pub diverged: Option<Diverged>,
+    /// The levels at which the method ran but its estimate did not: the shadow at N/2 (a
+    /// coarser run, which may fail where the method does not) diverged, and why. Such a
+    /// level measures nothing and rules nothing out: the next level flies.
+    pub shadow_lost: Vec<(usize, Diverged)>,
     /// The cheaper method of the same discretization whose pilots stand for this one's, if
     /// there is one: this one is not flown (it would measure the same spatial error), and is
     /// chosen, if at all, by its committed model.
@@ -60,9 +64,9 @@ pub struct Pilot {
 }
 
 impl Pilot {
-    /// Whether this method's pilots flew: measured a level, or diverged.
+    /// Whether this method's pilots flew: measured a level, lost its shadow, or diverged.
     pub fn flew(&self) -> bool {
-        !self.measured.is_empty() || self.diverged.is_some()
+        !self.measured.is_empty() || self.diverged.is_some() || !self.shadow_lost.is_empty()
     }
 
     fn new(method: MethodKind) -> Self {
@@ -72,6 +76,7 @@ impl Pilot {
             model: None,
             held_at: None,
             diverged: None,
+            shadow_lost: Vec::new(),
             measured_by: None,
             seconds: 0.0,
         }
@@ -83,12 +88,15 @@ impl Pilot {
         let options = Options {
             duration: duration.min(WINDOW),
             log_rate: RATE,
+            frame_grid: None,
         };
         let dt = self.method.tolerance_dt(segments);
         let run = simulate::run_shadowed(self.method, scene, segments, dt, &options, |_| {});
         if run.refused.is_none() {
-            if let Some(why) = run.diverged.or(run.lost) {
+            if let Some(why) = run.diverged {
                 self.diverged = Some(why);
+            } else if let Some(why) = run.lost {
+                self.shadow_lost.push((segments, why));
             } else if let Some(max_tip) = run.max_tip {
                 self.measured.push((segments, max_tip));
             }

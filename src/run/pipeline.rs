@@ -134,8 +134,9 @@ pub(super) struct Simulation<'a> {
 
 /// The simulation thread's work: runs the method, keeps the tip's latest samples, paces to
 /// the wall clock if asked, and sends each frame (`send` says false when nobody takes them
-/// any more, which ends the run). Returns the outcome, the tip samples, and the time spent
-/// computing (not waiting).
+/// any more, which ends the run). Returns the outcome, the tip samples, and the thread's CPU
+/// time: what the steps and the frames cost, not the waits (pacing, a full channel), nor
+/// what other threads did meanwhile.
 pub(super) fn simulate_and_send(
     plan: &RunPlan,
     simulation: Simulation<'_>,
@@ -147,26 +148,24 @@ pub(super) fn simulate_and_send(
     let options = Options {
         duration: plan.duration,
         log_rate: plan.log_rate,
+        frame_grid: plan.frame_grid,
     };
     let mut samples = TipSamples::new(plan.scene);
-    let mut waiting = Duration::ZERO;
+    let cpu = cpu_time::ThreadTime::now();
     let Simulation { method, watch } = simulation;
     let outcome = simulate::run_watched(method, watch, &options, Some(stop), |frame| {
         samples.push(frame.time, frame.tip());
         progress(&frame);
-        let wait_started = Instant::now();
         if let Some(speed) = plan.realtime {
             pace(started, frame.time / speed, stop);
         }
-        let sent = send(frame);
-        waiting += wait_started.elapsed();
-        if sent {
+        if send(frame) {
             ControlFlow::Continue(())
         } else {
             ControlFlow::Break(())
         }
     });
-    (outcome, samples, started.elapsed().saturating_sub(waiting))
+    (outcome, samples, cpu.elapsed())
 }
 
 /// Sleeps until `target_seconds` after `started`, waking early when `stop` is set.

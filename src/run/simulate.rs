@@ -21,6 +21,11 @@ pub struct Options {
     pub duration: f64,
     /// Frames per unit of simulated time; 0 for none.
     pub log_rate: f64,
+    /// Side by side: each frame's time is brought to the nearest multiple of
+    /// `1 / frame_grid`, an instant that every method's step divides
+    /// ([`step_on_frame_grid`]), so that the frames follow the steps and the steps do not
+    /// follow the frames. `None`: a frame at the step nearest its time.
+    pub frame_grid: Option<f64>,
 }
 
 /// The live error estimate a run carries: its shadow at N/2, and the tolerance the estimate
@@ -52,13 +57,19 @@ pub struct Frame {
     pub time: f64,
     /// Node positions, support … tip (N + 1 points, eqs. 14–15).
     pub nodes: Vec<Point>,
-    /// Tension on each segment.
+    /// Tension on each segment, the first at [`Frame::tension_first_at`] segments from the
+    /// support, the others a segment apart.
     pub tension: Vec<f64>,
+    /// Where the first tension sits, in segments from the support
+    /// ([`crate::methods::Descriptor::tension_first_at`]).
+    pub tension_first_at: f64,
     pub energy: Energy,
     /// (E − E_ref) / scale, E_ref the energy after [`REFERENCE_STEP`] steps.
     pub energy_deviation: f64,
     pub tip_velocity: Vector2<f64>,
     pub tip_acceleration: Vector2<f64>,
+    /// The tension at the support, s = 0 ([`Method::support_tension`]): the first of
+    /// `tension` sits below it.
     pub support_tension: f64,
     /// The largest joint gap, for a method that solves for its joints (see
     /// [`Method::constraint_residual`]).
@@ -118,8 +129,11 @@ pub struct Outcome {
     /// Tip position at the last trusted state: the end of the run, or for a run that
     /// diverged the last state that passed the divergence checks ([`Outcome::trusted`]).
     pub tip: Point,
-    /// Support tension at the same state.
+    /// Support tension (at s = 0) at the same state.
     pub support_tension: f64,
+    /// The largest support tension seen at the checks (about every 1e-3 time units), and
+    /// when: the load the support must bear.
+    pub max_support_tension: (f64, f64),
     /// The step and time of the state that `energy_final`, `tip` and `support_tension`
     /// describe: the last one reached, or the last that passed the checks before a divergence.
     pub trusted: (u64, f64),
@@ -148,8 +162,13 @@ impl Outcome {
 
 /// The step at which frame `j` is taken: the multiple of `stride` steps nearest to time
 /// j / rate (a run with a shadow logs at the steps its shadow shares).
-fn frame_step(j: u64, rate: f64, dt: f64, stride: u64) -> u64 {
-    stride * (j as f64 / (rate * dt * stride as f64)).round() as u64
+fn frame_step(j: u64, options: &Options, dt: f64, stride: u64) -> u64 {
+    let time = j as f64 / options.log_rate;
+    let time = match options.frame_grid {
+        Some(grid) => (time * grid).round() / grid,
+        None => time,
+    };
+    stride * (time / (dt * stride as f64)).round() as u64
 }
 
 /// Builds a frame from the method's current state.
@@ -163,11 +182,13 @@ pub fn frame(
     let mut nodes = Vec::with_capacity(obs.angle.len() + 1);
     geometry::nodes(&obs.angle, &mut nodes);
     let energy = method.energy();
+    let first_at = method.descriptor().tension_first_at;
     Frame {
         step: method.steps(),
         time: method.time(),
         nodes,
         tension: obs.tension.clone(),
+        tension_first_at: first_at,
         energy,
         energy_deviation: (energy.total() - energy_reference) / energy_scale,
         tip_velocity: geometry::tip_velocity(&obs.angle, &obs.angular_velocity),
@@ -176,7 +197,7 @@ pub fn frame(
             &obs.angular_velocity,
             &obs.angular_acceleration,
         ),
-        support_tension: obs.tension.first().copied().unwrap_or(0.0),
+        support_tension: method.support_tension(),
         constraint_residual: method.constraint_residual(),
         velocity_residual: method.velocity_residual(),
         error_estimate: None,
@@ -289,6 +310,7 @@ pub fn run_watched(
         frames: 0,
         tip: geometry::tip(method.angles()),
         support_tension: method.support_tension(),
+        max_support_tension: (method.support_tension(), method.time()),
         trusted: (method.steps(), method.time()),
         max_constraint_residual: method.constraint_residual(),
         max_velocity_residual: method.velocity_residual(),
@@ -306,7 +328,7 @@ pub fn run_watched(
     let mut next_frame = 0;
     loop {
         let step = method.steps();
-        let at_frame = frame_step(next_frame, options.log_rate, dt, stride).min(total_steps);
+        let at_frame = frame_step(next_frame, options, dt, stride).min(total_steps);
         if logging && at_frame <= step {
             let mut f = frame(method, &mut obs, energy_reference, energy_scale);
             if let Some(watch) = estimating.as_mut() {
@@ -314,7 +336,7 @@ pub fn run_watched(
             }
             outcome.frames += 1;
             // Frames closer together than a step (log rate above 1/k) share this one.
-            while frame_step(next_frame, options.log_rate, dt, stride) <= step {
+            while frame_step(next_frame, options, dt, stride) <= step {
                 next_frame += 1;
             }
             if on_frame(f).is_break() {
@@ -349,7 +371,7 @@ pub fn run_watched(
         outcome.energy_final = method.energy().total();
         method.observe(&mut obs);
         outcome.tip = geometry::tip(&obs.angle);
-        outcome.support_tension = obs.tension.first().copied().unwrap_or(0.0);
+        outcome.support_tension = method.support_tension();
         outcome.trusted = (outcome.steps, outcome.time);
     } else {
         outcome.tip = geometry::tip(&trusted_angles);
@@ -389,6 +411,7 @@ pub fn run_to(method: &mut dyn Method, duration: f64) -> Outcome {
     let options = Options {
         duration,
         log_rate: 0.0,
+        frame_grid: None,
     };
     run(method, &options, None, |_| ControlFlow::Continue(()))
 }
@@ -443,6 +466,9 @@ fn watch(method: &dyn Method, energy_reference: f64, outcome: &mut Outcome) -> O
     }
     outcome.energy_final = energy;
     outcome.support_tension = support;
+    if support > outcome.max_support_tension.0 {
+        outcome.max_support_tension = (support, method.time());
+    }
     outcome.trusted = (step, method.time());
     None
 }

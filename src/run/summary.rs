@@ -115,6 +115,10 @@ pub struct Summary {
     pub status: Status,
     pub diverged: Option<Diverged>,
     pub wall_seconds: f64,
+    /// CPU seconds of the simulation thread (each method's own, side by side): the steps,
+    /// the estimate's shadow and the frames built, not the waits nor the recording.
+    pub cpu_seconds: f64,
+    /// `cpu_seconds` per step per segment, in ns.
     pub ns_per_segment_step: f64,
     pub frames_logged: u64,
     /// `final` is the energy of the last trusted state (see `trusted`).
@@ -125,6 +129,9 @@ pub struct Summary {
     pub trusted: Trusted,
     pub tip: Xy,
     pub support_tension: f64,
+    /// The largest support tension of the run (up to the last trusted state), and when.
+    pub max_support_tension: f64,
+    pub max_support_tension_time: f64,
     /// The largest joint gap |g_j| seen, for a method that solves for its joints (`rattle`,
     /// `midpoint`): how far the rods came apart, at round-off when all is well.
     pub constraint_residual: Option<f64>,
@@ -173,13 +180,13 @@ pub struct Summary {
 }
 
 impl Summary {
-    /// The summary of a run of `plan` that ended in `outcome`. `busy` is the time spent
-    /// computing, `wall` the whole run's.
+    /// The summary of a run of `plan` that ended in `outcome`. `cpu` is the simulation
+    /// thread's CPU time, `wall` the whole run's.
     pub fn new(
         plan: &RunPlan,
         outcome: &Outcome,
         tip_samples: TipSamples,
-        busy: Duration,
+        cpu: Duration,
         wall: Duration,
         recording_error: Option<String>,
     ) -> Self {
@@ -211,7 +218,8 @@ impl Summary {
             status,
             diverged: outcome.diverged.clone(),
             wall_seconds: wall.as_secs_f64(),
-            ns_per_segment_step: busy.as_secs_f64() * 1e9 / segment_steps,
+            cpu_seconds: cpu.as_secs_f64(),
+            ns_per_segment_step: cpu.as_secs_f64() * 1e9 / segment_steps,
             frames_logged: outcome.frames,
             energy: EnergySummary {
                 reference: outcome.energy_reference,
@@ -228,6 +236,8 @@ impl Summary {
                 y: outcome.tip.y,
             },
             support_tension: outcome.support_tension,
+            max_support_tension: outcome.max_support_tension.0,
+            max_support_tension_time: outcome.max_support_tension.1,
             constraint_residual: outcome.max_constraint_residual,
             velocity_residual: outcome.max_velocity_residual,
             step_statistics: outcome.step_statistics,
@@ -291,8 +301,12 @@ impl Summary {
             ""
         };
         text += &format!(
-            "  tip at ({:.5}, {:.5}), support tension F_0 = {:.4}{at}\n",
-            self.tip.x, self.tip.y, self.support_tension
+            "  tip at ({:.5}, {:.5}), support tension F(0) = {:.4}{at}; at most {:.4} (t = {:.3})\n",
+            self.tip.x,
+            self.tip.y,
+            self.support_tension,
+            self.max_support_tension,
+            self.max_support_tension_time
         );
         if let Some(residual) = self.constraint_residual {
             text += &format!("  joints closed to {residual:.1e} at worst (largest |g_j|)");
@@ -347,8 +361,8 @@ impl Summary {
         }
         text += &self.theory_lines();
         text += &format!(
-            "  {:.3} s wall, {:.1} ns per segment-step, {} frames logged",
-            self.wall_seconds, self.ns_per_segment_step, self.frames_logged
+            "  {:.3} s wall, {:.3} s CPU simulating ({:.1} ns per segment-step), {} frames logged",
+            self.wall_seconds, self.cpu_seconds, self.ns_per_segment_step, self.frames_logged
         );
         text
     }

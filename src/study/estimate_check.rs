@@ -190,6 +190,7 @@ pub fn run_cell(
     let options = Options {
         duration,
         log_rate: LOG_RATE,
+        frame_grid: None,
     };
     let samples = &mut cell.samples;
     let run = simulate::run_shadowed(method, &scene, segments, dt, &options, |frame| {

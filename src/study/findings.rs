@@ -24,6 +24,9 @@ pub struct Findings {
     pub matching: Vec<Row>,
     /// Each method's cheapest run with a tip error at most [`TIP_TARGET`].
     pub at_target: Vec<Row>,
+    /// The grid's coarse edges: its fewest segments and its longest step. A cheapest run on
+    /// one of them may have a cheaper one beyond it, outside the grid.
+    pub coarse_edges: (usize, f64),
 }
 
 /// The tip error at which the methods' costs are compared side by side.
@@ -84,10 +87,13 @@ impl Findings {
             .iter()
             .filter_map(|&m| cheapest_within(rows, m, TIP_TARGET))
             .collect();
+        let fewest = rows.iter().map(|r| r.segments).min().unwrap_or(0);
+        let longest = rows.iter().map(|r| r.dt).fold(0.0, f64::max);
         Self {
             report_method_best,
             matching,
             at_target,
+            coarse_edges: (fewest, longest),
             tip_models: methods
                 .iter()
                 .filter_map(|&m| Some((m, fit(rows, m, 20)?)))
@@ -134,21 +140,38 @@ impl Findings {
             return String::new();
         };
         let mut s = format!(
-            "\n## A tip error of {TIP_TARGET:.0e}: each method's cheapest run\n\n| method | N | k | tip error | CPU s | × the cheapest |\n|---|---|---|---|---|---|\n"
+            "\n## A tip error of {TIP_TARGET:.0e}: each method's cheapest run\n\n| method | N | k | tip error | CPU s | × the cheapest | at the grid's edge |\n|---|---|---|---|---|---|---|\n"
         );
         for r in &self.at_target {
             let _ = writeln!(
                 s,
-                "| {} | {} | {:.3e} | {:.2e} | {:.2e} | {:.2} |",
+                "| {} | {} | {:.3e} | {:.2e} | {:.2e} | {:.2} | {} |",
                 r.method,
                 r.segments,
                 r.dt,
                 r.tip_error.unwrap_or(f64::NAN),
                 r.cpu_seconds,
-                r.cpu_seconds / least.max(1e-12)
+                r.cpu_seconds / least.max(1e-12),
+                self.edge(r).unwrap_or_default()
             );
         }
+        if self.at_target.iter().any(|r| self.edge(r).is_some()) {
+            s += "\nA run at the grid's edge (its fewest N or its longest k) may not be the cheapest: a cheaper one that holds the target may lie beyond the grid. Widen the grid there to know.\n";
+        }
         s
+    }
+
+    /// Which coarse edge of the grid `r` sits on, if any: there a cheaper run may lie beyond.
+    pub fn edge(&self, r: &Row) -> Option<String> {
+        let (fewest, longest) = self.coarse_edges;
+        let mut on = Vec::new();
+        if r.segments == fewest {
+            on.push(format!("fewest N ({fewest})"));
+        }
+        if r.dt == longest {
+            on.push(format!("longest k ({longest:e})"));
+        }
+        (!on.is_empty()).then(|| format!("**{}**", on.join(", ")))
     }
 
     /// Fitted orders in h, for the tip error and the energy deviation.

@@ -23,19 +23,29 @@ pub struct Spec {
 }
 
 impl Spec {
-    /// The time step actually run for a nominal `dt`: the nearest that divides the duration
-    /// into whole steps, so that every run ends exactly at the final time. A `dt` that
-    /// already divides it (to round-off) is kept as given, so that charts and tables print
-    /// the step the user typed (1e-4, not 9.999999999999999e-5); the run takes the same
-    /// whole number of steps either way.
+    /// The time step actually run for a nominal `dt`: the largest no larger than `dt` that
+    /// divides the duration into whole steps, so that every run ends exactly at the final
+    /// time and none runs at a coarser step than asked. A `dt` that already divides it (to
+    /// round-off) is kept as given, so that charts and tables print the step the user typed
+    /// (1e-4, not 9.999999999999999e-5); the run takes the same whole number of steps
+    /// either way. [`Spec::moved_dts`] lists the others, for the study to say so.
     pub fn snap(&self, dt: f64) -> f64 {
-        let steps = (self.duration / dt).round().max(1.0);
+        let steps = (self.duration / dt * (1.0 - 1e-12)).ceil().max(1.0);
         let snapped = self.duration / steps;
         if (snapped - dt).abs() <= 8.0 * f64::EPSILON * dt {
             dt
         } else {
             snapped
         }
+    }
+
+    /// Each nominal step that runs at another ([`Spec::snap`]), with the step it runs at.
+    pub fn moved_dts(&self) -> Vec<(f64, f64)> {
+        self.dts
+            .iter()
+            .map(|&dt| (dt, self.snap(dt)))
+            .filter(|(dt, run)| dt != run)
+            .collect()
     }
 
     /// The grid's runs in a fixed order, the same on every machine: methods as listed, then

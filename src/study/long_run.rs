@@ -137,6 +137,7 @@ pub fn run(
     let options = Options {
         duration,
         log_rate: FRAMES_PER_UNIT,
+        frame_grid: None,
     };
     let outcome = simulate::run(stepper.as_mut(), &options, None, |frame| {
         let deviation = frame.energy.total() - reference;

@@ -134,6 +134,7 @@ pub fn startup_burst(
         &Options {
             duration: steps as f64 * dt,
             log_rate: 1.0 / dt,
+            frame_grid: None,
         },
         None,
         |f| {

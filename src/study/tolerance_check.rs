@@ -257,6 +257,7 @@ pub fn measure(
     let options = Options {
         duration,
         log_rate: LOG_RATE,
+        frame_grid: None,
     };
     let mut worst: f64 = 0.0;
     let mut on_frame = |tip: Point, t: f64| worst = worst.max((tip - reference.at(t)).norm());

@@ -26,7 +26,11 @@ pub fn run_frames(
     let mut frames = Vec::new();
     let outcome = simulate::run(
         method.as_mut(),
-        &Options { duration, log_rate },
+        &Options {
+            duration,
+            log_rate,
+            frame_grid: None,
+        },
         None,
         |f| {
             frames.push(f);
@@ -115,7 +119,8 @@ pub fn mode_angular_frequency(kind: MethodKind, number: u32, segments: usize, dt
 
 /// The hanging string (released at 90°) at `n` segments and the method's default step, after
 /// 2 time units: every node on the vertical, the tip at y = 1, F(s) = m g (1 − s) at the
-/// middle of each rod (docs/physics.md, statics), and the joints closed.
+/// middle of each rod (docs/physics.md, statics) and m g at the support, s = 0, in every frame
+/// and in the outcome, and the joints closed.
 pub fn assert_hanging_string_stays_put(kind: MethodKind, n: usize) {
     let hanging = Scene::Release { angle_deg: 90.0 };
     let (outcome, frames) = run_frames(kind, hanging, n, kind.default_dt(n), 2.0, 10.0);
@@ -140,6 +145,7 @@ pub fn assert_hanging_string_stays_put(kind: MethodKind, n: usize) {
             "segment {i}: F = {f}, expected {below}"
         );
     }
+    assert_holds_its_weight_at_the_support(&outcome, &frames);
     let gap = frames
         .iter()
         .map(|f| {
@@ -148,6 +154,24 @@ pub fn assert_hanging_string_stays_put(kind: MethodKind, n: usize) {
         })
         .fold(0.0, f64::max);
     assert!(gap < 1e-12, "the joints opened {gap:.1e}");
+}
+
+/// The whole string's weight, m g = 1, at the support of a string hanging at rest: in every
+/// frame and in the outcome (not the first segment's tension, h/2 or h below it).
+pub fn assert_holds_its_weight_at_the_support(outcome: &Outcome, frames: &[Frame]) {
+    for f in frames {
+        assert!(
+            (f.support_tension - 1.0).abs() < 1e-9,
+            "F(0) = {} at t = {}",
+            f.support_tension,
+            f.time
+        );
+    }
+    assert!(
+        (outcome.support_tension - 1.0).abs() < 1e-9,
+        "F(0) = {} at the end",
+        outcome.support_tension
+    );
 }
 
 /// Modes 1 and 2 at N = 100 and the method's default step swing at Bernoulli's frequencies
