@@ -10,7 +10,12 @@ gRPC endpoints (the history's, and the live picture's one port above it), that n
 blank; saves a screenshot; stops the run with SIGTERM.
 
     scripts/web-check.py [--screenshot PATH] [--seconds S] [--run-args "ARGS"]
-                         [--soak S [--soak-csv PATH] [--sample-every S]]
+                         [--soak S [--soak-csv PATH] [--sample-every S]] [--shot-at T]
+
+With --shot-at T (a finite run, its --duration in RUN_ARGS) the screenshot is of time T:
+the script waits until the page has caught up with the run (its time panel unchanged for
+6 s), then puts the time cursor at T on the time panel, and takes the picture there. The
+"then" rope shows T; the live rope, the run's end.
 
 With --soak S the page stays open S seconds more, and every --sample-every seconds (30) the
 script records whether the page still answers, whether the time panel's strip changed since
@@ -180,6 +185,36 @@ def scrub(page) -> list:
     return failures
 
 
+def caught_up(page, most_seconds: float = 180.0) -> bool:
+    """Waits until the time panel stops changing (the page has drawn all it was sent)."""
+    left, right, y = TIME_BAR
+    strip = {"x": left, "y": y - 25, "width": right - left, "height": 50}
+    last, still, deadline = None, 0, time.time() + most_seconds
+    while time.time() < deadline:
+        now = hashlib.sha256(page.screenshot(clip=strip, timeout=30_000)).hexdigest()
+        still = still + 1 if now == last else 0
+        if still >= 2:
+            return True
+        last = now
+        page.wait_for_timeout(3000)
+    return False
+
+
+def shoot_at(page, at: float, duration: float, path: str) -> list:
+    """Puts the time cursor at `at` of a run of `duration` and takes the screenshot there."""
+    try:
+        if not caught_up(page):
+            return [f"the page did not catch up with the run within 180 s: no picture at t = {at}"]
+        left, right, y = TIME_BAR
+        page.mouse.click(left + (right - left) * min(max(at / duration, 0.0), 1.0), y)
+        page.wait_for_timeout(4000)
+        page.screenshot(path=path, timeout=60_000)
+        print(f"web-check: the time cursor put at t = {at} of {duration}: {path}")
+        return []
+    except Exception as err:
+        return [f"no picture at t = {at}: {str(err).splitlines()[0]}"]
+
+
 def descendants(root: int):
     """The pids of every process below `root`."""
     parents = {}
@@ -245,6 +280,8 @@ def main() -> int:
                         help="the page's size, WIDTHxHEIGHT (a smaller page draws faster in software)")
     parser.add_argument("--stall", type=float, default=0.0,
                         help="seconds to stop the browser (SIGSTOP) once data arrived, rope's memory sampled, then resume it")
+    parser.add_argument("--shot-at", type=float, default=None,
+                        help="take the screenshot at this time of a finite run (its --duration in --run-args), once the page caught up")
     parser.add_argument("--run-args", default="--method seed,chain --duration inf --realtime",
                         help="the arguments of `rope run` besides --web, --serve-grpc and --no-browser")
     args = parser.parse_args()
@@ -311,8 +348,14 @@ def main() -> int:
             failures += stall(page, run.pid, args.stall, args.sample_every, pathlib.Path(args.soak_csv))
         if args.soak > 0:
             failures += soak(page, run.pid, args.soak, args.sample_every, pathlib.Path(args.soak_csv))
+        if args.shot_at is not None:
+            words = args.run_args.split()
+            duration = float(words[words.index("--duration") + 1]) if "--duration" in words else 3.0
+            failures += shoot_at(page, args.shot_at, duration, args.screenshot)
         try:
-            shot = page.screenshot(path=args.screenshot, timeout=60_000)
+            # With --shot-at the picture at T is already saved; this one only checks the canvas.
+            shot = page.screenshot(path=None if args.shot_at is not None else args.screenshot,
+                                   timeout=60_000)
             crashed = any(el.is_visible() for el in page.get_by_text("Rerun has crashed").all())
         except Exception as err:  # a page that stopped answering cannot be drawn either
             shot, crashed = b"", False

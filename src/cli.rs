@@ -45,7 +45,7 @@ Examples:
   rope study --segments 16,32 --dts 1e-3,3e-3 --out small
       a small grid in seconds: study.csv, findings.md and the charts
   rope study --out study
-      the default grid (210 runs, about 6 minutes on two cores)
+      the default grid (280 runs, about 15 minutes on two cores)
   rope study --blow-up 200 --out blow-up
       when the report's scheme blows up, against N and k
 

@@ -7,6 +7,7 @@ use crate::methods::{MethodKind, REPORT};
 use crate::run::simulate::REFERENCE_STEP;
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::ops::Range;
 use std::path::Path;
 
@@ -130,38 +131,68 @@ fn work_precision<DB: DrawingBackend>(
     let panels = root.split_evenly((1, 2));
     let ok: Vec<&Row> = rows.iter().filter(|r| r.status == Status::Ok).collect();
     let x_range = log_range(ok.iter().map(|r| r.cpu_seconds));
-    let metrics: [Metric; 2] = [
+    let metrics: [(Metric, [f64; 3]); 2] = [
         (
-            "tip error at the final time (string lengths)".to_owned(),
-            |r| r.tip_error,
+            (
+                "tip error at the final time (string lengths)".to_owned(),
+                |r| r.tip_error,
+            ),
+            TIP_TARGETS,
         ),
-        (format!("energy deviation {}", deviation_axis()), |r| {
-            r.energy_deviation
-        }),
+        (
+            (format!("energy deviation {}", deviation_axis()), |r| {
+                r.energy_deviation
+            }),
+            [1e-4, 1e-6, 1e-8],
+        ),
     ];
-    for (panel, (label, metric)) in panels.iter().zip(metrics) {
-        work_precision_panel(panel, rows, &ok, x_range.clone(), &label, metric)?;
+    for (panel, ((label, metric), targets)) in panels.iter().zip(metrics) {
+        work_precision_panel(panel, &ok, x_range.clone(), &label, metric, targets)?;
     }
     Ok(())
 }
 
-/// One panel of the work–precision chart: `metric` against CPU seconds, a curve per method
-/// and N across k, and the Pareto front of all the runs.
+/// The tip errors at which the work–precision chart marks the cheapest run that holds each.
+pub const TIP_TARGETS: [f64; 3] = [1e-3, 1e-4, 1e-5];
+
+/// The cheapest of `runs` (cost, error, method) whose error is at most `target`.
+pub fn cheapest_holding(
+    runs: &[(f64, f64, MethodKind)],
+    target: f64,
+) -> Option<(f64, f64, MethodKind)> {
+    runs.iter()
+        .copied()
+        .filter(|&(_, e, _)| e <= target)
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+}
+
+/// One panel of the work–precision chart, made to answer "which method is cheapest for
+/// this error?": every run a faint dot in its method's colour; each method's front (the
+/// runs no other run of that method beats on both cost and error) a line, the legend one
+/// entry per method; and at each of `targets` a dashed line with the cheapest run that
+/// holds it ringed and named.
 fn work_precision_panel<DB: DrawingBackend>(
     panel: &DrawingArea<DB, Shift>,
-    rows: &[Row],
     ok: &[&Row],
     x_range: Range<f64>,
     label: &str,
     metric: fn(&Row) -> Option<f64>,
+    targets: [f64; 3],
 ) -> Drawn<DB> {
-    let point = |r: &Row| metric(r).filter(|e| *e > 0.0).map(|e| (r.cpu_seconds, e));
-    let y_range = log_range(ok.iter().filter_map(|r| metric(r)));
+    let runs: Vec<(f64, f64, MethodKind)> = ok
+        .iter()
+        .filter_map(|r| {
+            let e = metric(r).filter(|e| *e > 0.0)?;
+            Some((r.cpu_seconds, e, r.method))
+        })
+        .collect();
+    let y_range = log_range(runs.iter().map(|r| r.1));
+    let (x_lo, x_hi) = (x_range.start, x_range.end);
     let mut chart = ChartBuilder::on(panel)
         .margin(12)
         .x_label_area_size(45)
         .y_label_area_size(70)
-        .build_cartesian_2d(x_range.log_scale(), y_range.log_scale())?;
+        .build_cartesian_2d(x_range.log_scale(), y_range.clone().log_scale())?;
     chart
         .configure_mesh()
         .x_desc("CPU seconds (one run, one core)")
@@ -171,43 +202,81 @@ fn work_precision_panel<DB: DrawingBackend>(
         .label_style((SANS, 13))
         .draw()?;
     for method in MethodKind::ALL {
-        let counts = segment_counts(rows, method);
-        for (i, &n) in counts.iter().enumerate() {
-            let mut pts: Vec<(f64, f64)> = ok
-                .iter()
-                .filter(|r| r.method == method && r.segments == n)
-                .filter_map(|r| point(r))
-                .collect();
-            if pts.is_empty() {
-                continue;
-            }
-            pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-            let color = shade(method, i, counts.len());
-            chart
-                .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))?
-                .label(format!("{method} N = {n}"))
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(3))
-                });
-            chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))?;
-        }
-    }
-    let all: Vec<(f64, f64)> = ok.iter().filter_map(|r| point(r)).collect();
-    let front = pareto_front(&all);
-    chart
-        .draw_series(LineSeries::new(front.clone(), BLACK.stroke_width(1)))?
-        .label("Pareto front")
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLACK.stroke_width(1)));
-    chart.draw_series(
-        front
+        let mine: Vec<(f64, f64)> = runs
             .iter()
-            .map(|&p| Circle::new(p, 6, BLACK.stroke_width(1))),
-    )?;
+            .filter(|r| r.2 == method)
+            .map(|r| (r.0, r.1))
+            .collect();
+        if mine.is_empty() {
+            continue;
+        }
+        let color = colour(method);
+        chart.draw_series(
+            mine.iter()
+                .map(|&p| Circle::new(p, 2, color.mix(0.3).filled())),
+        )?;
+        let front = pareto_front(&mine);
+        chart
+            .draw_series(LineSeries::new(front.clone(), color.stroke_width(3)))?
+            .label(format!(
+                "{method}: its cheapest front ({} runs)",
+                mine.len()
+            ))
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(3))
+            });
+        chart.draw_series(front.iter().map(|&p| Circle::new(p, 4, color.filled())))?;
+    }
+    let mut marked = false;
+    for target in targets {
+        if !y_range.contains(&target) {
+            continue;
+        }
+        chart.draw_series(DashedLineSeries::new(
+            [(x_lo, target), (x_hi, target)],
+            6,
+            4,
+            BLACK.mix(0.5).stroke_width(1),
+        ))?;
+        let Some((cost, error, method)) = cheapest_holding(&runs, target) else {
+            continue;
+        };
+        let color = colour(method);
+        let ring = chart.draw_series(std::iter::once(Circle::new(
+            (cost, error),
+            9,
+            BLACK.stroke_width(2),
+        )))?;
+        if !marked {
+            ring.label("cheapest run that holds the dashed target")
+                .legend(|(x, y)| Circle::new((x + 9, y), 6, BLACK.stroke_width(2)));
+            marked = true;
+        }
+        // Just above the dashed line, to the right of the ringed run.
+        let style = (SANS, 14)
+            .into_font()
+            .color(&color)
+            .pos(Pos::new(HPos::Left, VPos::Bottom));
+        chart.draw_series(std::iter::once(Text::new(
+            format!("≤ {target:.0e}: {method}, {}", cost_text(cost)),
+            (cost * 1.3, target),
+            style,
+        )))?;
+    }
     legend(
         chart.configure_series_labels(),
         SeriesLabelPosition::UpperRight,
-        11,
+        12,
     )
+}
+
+/// CPU seconds as a label beside a marked run.
+fn cost_text(seconds: f64) -> String {
+    if seconds >= 0.1 {
+        format!("{seconds:.2} s")
+    } else {
+        format!("{seconds:.1e} s")
+    }
 }
 
 /// Stability map: N × k, each run marked ok / diverged / refused, the measured boundary and
@@ -591,7 +660,67 @@ fn write_energy_against_k(dir: &Path, rows: &[Row]) -> anyhow::Result<()> {
 
 #[cfg(test)]
 mod tests {
-    use super::tick;
+    use super::*;
+
+    fn row(method: MethodKind, segments: usize, dt: f64, cpu: f64, tip: f64) -> Row {
+        Row {
+            method,
+            segments,
+            dt,
+            status: Status::Ok,
+            energy_deviation: Some(tip * 0.1),
+            tip_error: Some(tip),
+            shape_error: Some(tip),
+            cpu_seconds: cpu,
+            ns_per_segment_step: 1.0,
+            tip: None,
+            shape: None,
+        }
+    }
+
+    /// Every chart of a study is drawn for no data, one run, and runs all alike: none may
+    /// fail or hang (an empty one once computed ticks for ever).
+    #[test]
+    fn every_chart_draws_no_data_one_point_and_equal_values() {
+        register_font().unwrap();
+        let dir = std::env::temp_dir().join(format!("rope-charts-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let one = [row(MethodKind::Chain, 16, 1e-3, 0.01, 1e-4)];
+        let alike = [
+            row(MethodKind::Chain, 16, 1e-3, 0.01, 1e-4),
+            row(MethodKind::Seed, 16, 1e-3, 0.01, 1e-4),
+            row(MethodKind::Seed, 32, 1e-3, 0.01, 1e-4),
+        ];
+        let burst = [(MethodKind::Chain, vec![(0.0, 0.5), (0.001, 0.5)])];
+        for (rows, startup) in [
+            (&[][..], &[][..]),
+            (&one[..], &burst[..]),
+            (&alike[..], &[][..]),
+        ] {
+            write_all(&dir, rows, startup, "a test").unwrap();
+            assert!(dir.join("work_precision.png").exists());
+        }
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
+    fn the_cheapest_run_holding_a_target_is_marked_and_none_when_none_holds() {
+        let runs = [
+            (1.0, 1e-3, MethodKind::Seed),
+            (0.5, 5e-4, MethodKind::Chain),
+            (0.1, 2e-3, MethodKind::Rattle),
+        ];
+        assert_eq!(
+            cheapest_holding(&runs, 1e-3).map(|r| r.2),
+            Some(MethodKind::Chain)
+        );
+        assert_eq!(
+            cheapest_holding(&runs, 1e-2).map(|r| r.2),
+            Some(MethodKind::Rattle)
+        );
+        assert!(cheapest_holding(&runs, 1e-5).is_none());
+        assert!(cheapest_holding(&[], 1.0).is_none());
+    }
 
     #[test]
     fn ticks_of_a_small_linear_axis_are_distinct() {
