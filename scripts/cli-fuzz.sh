@@ -66,6 +66,24 @@ study_args() {
     true
 }
 
+# Counts exit $code of `rope ${args[@]}` and says if it failed: an exit among the arguments
+# (`judge 0 2`), or 1 with a stated error, passes; any other, or a panic, fails.
+judge() {
+    exits[$code]=$((${exits[$code]:-0} + 1))
+    local ok=false
+    if [[ " $* " == *" $code "* ]]; then
+        ok=true
+    elif ((code == 1)) && grep -q "rope: error:" "$scratch/err"; then
+        ok=true
+    fi
+    grep -q "panicked" "$scratch/err" && ok=false
+    if ! $ok; then
+        failed=$((failed + 1))
+        echo "FAILED (exit $code): rope ${args[*]}"
+        sed 's/^/    /' "$scratch/err" | tail -5
+    fi
+}
+
 what=runs
 $study && what="study runs"
 echo "cli-fuzz: seed $seed, $runs $what"
@@ -78,18 +96,7 @@ for ((r = 1; r <= runs; r++)); do
         timeout 60 "$rope" "${args[@]}" > /dev/null 2> "$scratch/err"
         code=$?
         [[ -n ${FUZZ_VERBOSE:-} ]] && echo "exit $code: rope ${args[*]}: $(grep -m1 'bad input\|error' "$scratch/err")"
-        exits[$code]=$((${exits[$code]:-0} + 1))
-        ok=false
-        case $code in
-            0 | 2) ok=true ;;
-            1) grep -q "rope: error:\|rope study: error:" "$scratch/err" && ok=true ;;
-        esac
-        grep -q "panicked" "$scratch/err" && ok=false
-        if ! $ok; then
-            failed=$((failed + 1))
-            echo "FAILED (exit $code): rope ${args[*]}"
-            sed 's/^/    /' "$scratch/err" | tail -5
-        fi
+        judge 0 2
         continue
     fi
     # --yes lets a run of years start, as asked: it goes only with a run that ends.
@@ -122,18 +129,7 @@ for ((r = 1; r <= runs; r++)); do
     ((RANDOM % 8 == 0)) && args+=(--allow-unstable)
     timeout 30 "$rope" "${args[@]}" > /dev/null 2> "$scratch/err"
     code=$?
-    exits[$code]=$((${exits[$code]:-0} + 1))
-    ok=false
-    case $code in
-        0 | 2 | 3) ok=true ;;
-        1) grep -q "rope: error:" "$scratch/err" && ok=true ;;
-    esac
-    grep -q "panicked" "$scratch/err" && ok=false
-    if ! $ok; then
-        failed=$((failed + 1))
-        echo "FAILED (exit $code): rope ${args[*]}"
-        sed 's/^/    /' "$scratch/err" | tail -5
-    fi
+    judge 0 2 3
 done
 tally=""
 for code in $(printf '%s\n' "${!exits[@]}" | sort -n); do tally+=" exit $code: ${exits[$code]};"; done

@@ -687,7 +687,7 @@ fn study(args: &StudyArgs) -> anyhow::Result<ExitCode> {
                 rope::study::findings::TIP_TARGET,
                 r.segments,
                 r.dt,
-                edge.trim_matches('*')
+                edge
             );
         }
     }

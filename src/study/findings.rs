@@ -152,7 +152,7 @@ impl Findings {
                 r.tip_error.unwrap_or(f64::NAN),
                 r.cpu_seconds,
                 r.cpu_seconds / least.max(1e-12),
-                self.edge(r).unwrap_or_default()
+                self.edge(r).map_or(String::new(), |e| format!("**{e}**"))
             );
         }
         if self.at_target.iter().any(|r| self.edge(r).is_some()) {
@@ -171,7 +171,7 @@ impl Findings {
         if r.dt == longest {
             on.push(format!("longest k ({longest:e})"));
         }
-        (!on.is_empty()).then(|| format!("**{}**", on.join(", ")))
+        (!on.is_empty()).then(|| on.join(", "))
     }
 
     /// Fitted orders in h, for the tip error and the energy deviation.
