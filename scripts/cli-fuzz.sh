@@ -129,7 +129,7 @@ for ((r = 1; r <= runs; r++)); do
     ((RANDOM % 8 == 0)) && args+=(--allow-unstable)
     timeout 30 "$rope" "${args[@]}" > /dev/null 2> "$scratch/err"
     code=$?
-    judge 0 2 3
+    judge 0 2 3 4
 done
 tally=""
 for code in $(printf '%s\n' "${!exits[@]}" | sort -n); do tally+=" exit $code: ${exits[$code]};"; done

@@ -154,10 +154,10 @@ def soak(page, rope_pid: int, seconds: float, every: float, csv: pathlib.Path) -
 
 
 # Where the live layout puts things in a 1280×800 page: the live rope's view, the "then"
-# rope's view, and the time panel's bar.
+# rope's view, and the time bar (the time panel starts collapsed to it).
 LIVE_VIEW = {"x": 10, "y": 60, "width": 450, "height": 580}
 THEN_VIEW = {"x": 470, "y": 60, "width": 340, "height": 260}
-TIME_BAR = (210, 1245, 715)
+TIME_BAR = (258, 1068, 785)
 
 
 def scrub(page) -> list:
@@ -284,6 +284,9 @@ def main() -> int:
                         help="seconds to stop the browser (SIGSTOP) once data arrived, rope's memory sampled, then resume it")
     parser.add_argument("--shot-at", type=float, default=None,
                         help="take the screenshot near this time of a finite run (its --duration in --run-args), once the page caught up; approximate, see above")
+    parser.add_argument("--pin", action="store_true",
+                        help="run rope on the last CPU and the browser on the others, so that a soak's simulation "
+                             "keeps its pace beside the software renderer (what it sends per time unit does not change)")
     parser.add_argument("--run-args", default="--method seed,chain --duration inf --realtime",
                         help="the arguments of `rope run` besides --web, --serve-grpc and --no-browser")
     args = parser.parse_args()
@@ -299,11 +302,17 @@ def main() -> int:
         skip("no Playwright (pip install playwright)")
 
     rope = ROOT / "target" / "release" / "rope"
+    cpus = sorted(os.sched_getaffinity(0))
+    rope_cpu = cpus[-1] if args.pin and len(cpus) > 1 else None
     web, grpc = free_port(), free_pair()
     run = subprocess.Popen(
         [str(rope), "run", "--web", f"127.0.0.1:{web}", "--serve-grpc", f"127.0.0.1:{grpc}",
          "--no-browser", *args.run_args.split()],
-        stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+        preexec_fn=(lambda: os.sched_setaffinity(0, {rope_cpu})) if rope_cpu is not None else None)
+    if rope_cpu is not None:
+        # The browser, launched from here, inherits the other CPUs.
+        os.sched_setaffinity(0, set(os.sched_getaffinity(0)) - {rope_cpu})
     page_url = None
     for line in run.stderr:
         if "watch it in a browser at" in line:

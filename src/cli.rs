@@ -37,6 +37,7 @@ Exit status:
   1    an error, said (a recording that could not be completed among them)
   2    bad input, naming the flag and what would work
   3    a method diverged: said when and why, its frames until then kept
+  4    the run ended, but its live error estimate passed --tolerance (said when)
   130  interrupted (Ctrl-C or SIGTERM): the frames until then kept, the file valid";
 
 /// What `rope study --help` ends with: examples and what the exit status says.
@@ -170,7 +171,9 @@ pub struct StudyArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
 
-    /// Simulated time of every run; errors are measured at its end.
+    /// Simulated time of every run. A run's tip error is the largest over its frames (30 a
+    /// time unit, each against the reference at that frame's time), as --tolerance means
+    /// it; study.csv also keeps the error at the final time alone (final_tip_error).
     #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
     pub duration: f64,
 

@@ -21,10 +21,10 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
-/// Exit codes: 2 is bad input (as clap's own errors), 3 a diverged run, 130 an interrupted one,
-/// 1 anything else (among it a recording that could not be completed).
+/// Exit codes: 2 is bad input (as clap's own errors); a run's own ([`Verdict::exit_status`]):
+/// 3 a diverged run, 4 a run whose live estimate passed `--tolerance`, 130 an interrupted
+/// one; 1 anything else (among it a recording that could not be completed).
 const EXIT_BAD_INPUT: u8 = 2;
-const EXIT_DIVERGED: u8 = 3;
 const EXIT_INTERRUPTED: u8 = 130;
 
 /// The relative energy deviation past which a run is told which method keeps the energy.
@@ -486,7 +486,7 @@ fn side_by_side(lanes: Vec<Summary>) -> anyhow::Result<Summary> {
 /// What a run says, once, when its error estimate passes the tolerance.
 fn tolerance_notice(plan: &rope::run::RunPlan, frame: &rope::run::Frame) -> String {
     format!(
-        "rope: at t = {:.3} the estimated tip error {:.1e} passed the tolerance {:.1e} (N = {}); the run goes on, and its summary says tolerance_met: false",
+        "rope: at t = {:.3} the estimated tip error {:.1e} passed the tolerance {:.1e} (N = {}); the run goes on; its summary says tolerance_met: false, and it exits with status 4",
         frame.time,
         frame.error_estimate.map_or(f64::NAN, |e| e.tip),
         plan.tolerance.unwrap_or(f64::NAN),
@@ -519,23 +519,8 @@ fn serve_until_stopped(output: &Output, stop: &AtomicBool) {
 fn exit_code(summary: &Summary) -> ExitCode {
     if let Some(err) = &summary.recording_error {
         eprintln!("rope: error: the recording is incomplete: {err}");
-        return ExitCode::FAILURE;
     }
-    // Side by side, a method that diverged is enough for the exit status to say so.
-    let status = match summary
-        .methods
-        .iter()
-        .map(|m| m.status)
-        .find(|s| *s != Status::Ok)
-    {
-        Some(status) => status,
-        None => summary.status,
-    };
-    match status {
-        Status::Ok => ExitCode::SUCCESS,
-        Status::Diverged => ExitCode::from(EXIT_DIVERGED),
-        Status::Interrupted => ExitCode::from(EXIT_INTERRUPTED),
-    }
+    ExitCode::from(summary.verdict().exit_status())
 }
 
 /// Watches the viewer from a thread of its own (a viewer already gone, as one that refused

@@ -9,7 +9,7 @@ use common::cli::{Recording, Scratch, rope, summary};
 use rope::methods::MethodKind;
 use rope::methods::tolerance;
 use rope::model::Scene;
-use rope::run::{RunConfig, pipeline};
+use rope::run::{RunConfig, Verdict, pipeline};
 use rope::study::estimate_check::{self, Cell, FACTOR, Trajectory};
 use std::sync::atomic::AtomicBool;
 
@@ -114,6 +114,9 @@ fn run_with_tolerance(segments: usize, tolerance: f64) -> (rope::run::Summary, u
 fn a_run_whose_estimate_passes_its_tolerance_says_so_once_and_when() {
     let (broken, said) = run_with_tolerance(20, 1e-5);
     assert_eq!(broken.tolerance_met, Some(false));
+    // A script sees it: the run ended, with a status of its own.
+    assert_eq!(broken.verdict(), Verdict::ToleranceMissed);
+    assert_eq!(broken.verdict().exit_status(), 4);
     let when = broken.tolerance_exceeded_at.expect("the time it passed");
     assert!(when > 0.0 && when < 2.0, "{when}");
     assert_eq!(said, 1);
@@ -125,6 +128,7 @@ fn a_run_whose_estimate_passes_its_tolerance_says_so_once_and_when() {
         (kept.tolerance_met, kept.tolerance_exceeded_at, said),
         (Some(true), None, 0)
     );
+    assert_eq!(kept.verdict(), Verdict::Ok);
 }
 
 #[test]

@@ -26,8 +26,8 @@ fn two_methods_share_one_recording_with_a_rope_and_a_plot_line_each() {
     // Every rope on the same frame times: t = 0, 1/30, …, 1 (side by side, 30 frames per
     // time unit unless --log-rate says otherwise).
     // The methods' ropes, tips and profiles share their entities, an instant a row: every
-    // row has a tip per method, named by it.
-    let rows = rec.point_labels_by_row("rope/tips");
+    // row has a tip per method, in its colour.
+    let rows = rec.point_methods_by_row("rope/tips");
     assert_eq!(rows.len(), 31);
     for (i, (t, names)) in rows.iter().enumerate() {
         assert!((t - i as f64 / 30.0).abs() < 1e-9, "a row at {t}");
@@ -154,7 +154,7 @@ fn a_method_that_diverges_stops_alone_and_the_other_finishes() {
     let rec = Recording::read(&rrd);
     // The seed's tip (and its rope and profile) leave the instants after its last trusted
     // frame; the chain's go on to the end.
-    let rows = rec.point_labels_by_row("rope/tips");
+    let rows = rec.point_methods_by_row("rope/tips");
     let seed_last = rows
         .iter()
         .filter(|(_, names)| names.iter().any(|n| n == "seed"))

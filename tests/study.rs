@@ -51,7 +51,7 @@ fn tiny_grid_writes_a_row_per_run_with_statuses_errors_and_every_chart() {
     let mut lines = csv.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "method,segments,dt,status,energy_deviation,tip_error,shape_error,cpu_seconds,ns_per_segment_step,diverged_time,reason"
+        "method,segments,dt,status,energy_deviation,tip_error,final_tip_error,shape_error,cpu_seconds,ns_per_segment_step,diverged_time,reason"
     );
     assert_eq!(lines.count(), outcome.rows.len());
     for chart in [
@@ -72,6 +72,55 @@ fn tiny_grid_writes_a_row_per_run_with_statuses_errors_and_every_chart() {
         std::fs::read_to_string(out.join("findings.md"))
             .unwrap()
             .contains("Convergence in h")
+    );
+    let _ = std::fs::remove_dir_all(out);
+}
+
+/// The study's tip error is the worst over the frames, not the final instant's (where errors
+/// can cancel by chance): checked against the truth, an independent run of the chain at
+/// N = 400 read at each frame's time, for coarse runs whose error swings as the whip passes.
+#[test]
+fn a_runs_tip_error_is_its_worst_over_the_frames_against_an_independent_fine_run() {
+    let spec = Spec {
+        scene: THIRTY,
+        duration: 2.0,
+        methods: vec![MethodKind::Chain, MethodKind::Midpoint],
+        segments: vec![8, 16],
+        dts: vec![2e-3],
+    };
+    let out = scratch("frames");
+    let outcome = study::execute(&spec, 200, &out, "test", || {}).expect("the study runs");
+    let truth = study::trajectory::Trajectory::compute(&THIRTY, 400, spec.duration).unwrap();
+    let resolution = outcome.reference.error_estimate() + 1e-4;
+    let mut wider = 0;
+    for row in &outcome.rows {
+        assert_eq!(row.status, Status::Ok, "{row:?}");
+        // Every frame, at 30 a time unit: 61 over [0, 2].
+        assert_eq!(row.frame_tips.len(), 61, "{:?}", row.method);
+        let worst = row
+            .frame_tips
+            .iter()
+            .map(|&(t, tip)| (tip - truth.at(t)).norm())
+            .fold(0.0, f64::max);
+        let (tip, last) = (row.tip_error.unwrap(), row.final_tip_error.unwrap());
+        assert!(
+            (tip - worst).abs() <= resolution,
+            "{} N = {}: the study's {tip:.3e} against the truth's {worst:.3e}",
+            row.method,
+            row.segments
+        );
+        assert!(tip >= last - resolution, "{tip:e} below the final {last:e}");
+        if tip > 2.0 * last {
+            wider += 1;
+        }
+    }
+    assert!(wider > 0, "no run's worst frame was far from its final one");
+    let csv = std::fs::read_to_string(out.join("study.csv")).unwrap();
+    assert!(
+        csv.lines()
+            .next()
+            .unwrap()
+            .contains(",tip_error,final_tip_error,")
     );
     let _ = std::fs::remove_dir_all(out);
 }

@@ -43,6 +43,11 @@ pub fn choose(
     choose_with(tolerance, duration, scene, committed, MIN_SEGMENTS, fits)
 }
 
+/// The longest run the committed error models were measured over: the release atlas's
+/// window, and the six scenes the methods' laws were fitted to, both to t = 3. Past it a
+/// committed model may not overrule the pilots, which measure the run's own duration.
+pub const COMMITTED_UNTIL: f64 = super::atlas::WINDOW;
+
 /// `method`'s committed error model from `scene` to `duration` for `tolerance`: the release
 /// atlas's ([`from_atlas`]) where it serves, else the method's one law, fitted to the worst
 /// of six scenes.

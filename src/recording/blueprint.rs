@@ -12,20 +12,22 @@ use rerun::blueprint::{
 };
 
 /// The whole layout: the views get the window (the blueprint and selection panels start
-/// collapsed; the time panel, which scrubs the run, stays). `headline` names the method, N
-/// and k over the rope when every run of the recording shares them. With several methods
-/// side by side (`lanes`, a plan each), their ropes share the rope view, each named at its
-/// tip, and the energy panel gives way to their distance from the most accurate one's string.
+/// collapsed; the time panel, which scrubs the run, keeps its time bar). `headline` names
+/// the method, N and k over the rope when every run of the recording shares them. With
+/// several methods side by side (`lanes`, a plan each), their ropes share the rope view,
+/// each in its method's hue (named in the view's legend), and the energy panel gives way to
+/// their distance from the most accurate one's string.
 pub fn blueprint(headline: Option<&str>, lanes: &[RunPlan]) -> Blueprint {
     window([
-        rope_view(headline).into(),
+        rope_view(headline, lanes.len() > 1).into(),
         tension_profile_view().into(),
         plots(lanes).into(),
     ])
 }
 
 /// Three columns (rope, profile, plots) that get the window: the blueprint and selection
-/// panels start collapsed; the time panel, which scrubs the run, stays.
+/// panels start collapsed; the time panel, which scrubs the run, keeps only its time bar, so
+/// that the plots get the height their axes need (expanded, it left each log plot two ticks).
 fn window(columns: [ContainerLike; 3]) -> Blueprint {
     Blueprint::new(Horizontal::new(columns).with_column_shares([4.0, 3.0, 4.0]))
         .with_auto_views(false)
@@ -34,7 +36,7 @@ fn window(columns: [ContainerLike; 3]) -> Blueprint {
         .with_time_panel(
             TimePanel::new()
                 .with_timeline(SIM_TIME)
-                .with_state(PanelState::Expanded),
+                .with_state(PanelState::Collapsed),
         )
 }
 
@@ -62,7 +64,7 @@ fn plots(lanes: &[RunPlan]) -> Vertical {
 /// `shape_interval` time units; the plots as for a run of every frame.
 pub fn live(headline: Option<&str>, lanes: &[RunPlan], shape_interval: f64) -> Blueprint {
     window([
-        live_rope_view(headline).into(),
+        live_rope_view(headline, lanes.len() > 1).into(),
         Vertical::new([
             then_rope_view(shape_interval).into(),
             tension_profile_view().into(),
@@ -73,10 +75,14 @@ pub fn live(headline: Option<&str>, lanes: &[RunPlan], shape_interval: f64) -> B
     ])
 }
 
+/// How ropes side by side are coloured, for the rope views' titles.
+const HUED: &str = "each in its method's colour, shaded by tension";
+
 /// The live rope: it replaces itself at every frame, whatever the time cursor says.
-fn live_rope_view(headline: Option<&str>) -> Spatial2DView {
+fn live_rope_view(headline: Option<&str>, side_by_side: bool) -> Spatial2DView {
     let title = match headline {
         Some(headline) => format!("Rope now (live): {headline}"),
+        None if side_by_side => format!("Ropes now (live, {HUED})"),
         None => "Rope now (live, coloured by tension)".to_owned(),
     };
     Spatial2DView::new(title).with_origin("rope")
@@ -93,9 +99,10 @@ fn then_rope_view(shape_interval: f64) -> Spatial2DView {
 
 /// The rope, coloured by tension, with its support, tip, trail and colour scale; the title
 /// says what is running (the support's label says it too, run by run).
-fn rope_view(headline: Option<&str>) -> Spatial2DView {
+fn rope_view(headline: Option<&str>, side_by_side: bool) -> Spatial2DView {
     let title = match headline {
         Some(headline) => format!("Rope: {headline}"),
+        None if side_by_side => format!("Ropes ({HUED})"),
         None => "Rope (coloured by tension)".to_owned(),
     };
     Spatial2DView::new(title).with_origin("rope")

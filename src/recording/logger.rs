@@ -2,7 +2,7 @@
 //! profile, energy and tip time series, and the run's parameters. Knows nothing of the
 //! equations: it draws what a [`Frame`] holds.
 
-use super::colour::{SHADE, shaded_strips, tension_colour};
+use super::colour::{SCALE_MAX, SHADE, hue_shade, shaded_strips, tension_colour};
 use super::entities::{HISTORY_LEAVES_OUT, SIM_TIME, STEP, path};
 use super::entities::{SERIES, SIDE_BY_SIDE, log10_abs};
 use super::error::RecordingError;
@@ -144,8 +144,6 @@ const SIDE_BY_SIDE_SERIES_WAIT: Duration = Duration::from_secs(1);
 const TRAIL_FRAMES: usize = 45;
 /// Line radius of the rope, in string lengths.
 const ROPE_RADIUS: f32 = 0.006;
-/// Largest tension on the colour scale (the support tension of a swing from rest ≲ 5/4).
-const SCALE_MAX: f64 = 1.25;
 
 /// The time columns of rows at `sim_time` seconds and `step` steps, both timelines.
 fn timelines(
@@ -282,7 +280,7 @@ impl RopeLogger {
                 .with_colors([rerun::Color::from_rgb(140, 140, 140)])
                 .with_show_labels(true),
         )?;
-        Self::log_scale(&rec)?;
+        Self::log_scale(&rec, false)?;
         Self::log_profile_axes(&rec)?;
         // Styling that never changes is logged once; frames carry only what moves.
         rec.log_static(
@@ -357,9 +355,10 @@ impl RopeLogger {
         })
     }
 
-    /// A static colour bar below the swing, F from 0 to [`SCALE_MAX`], labelled at its ends.
-    /// Spanning the swing's width, it also keeps the view's extent steady.
-    fn log_scale(rec: &RecordingStream) -> rerun::RecordingStreamResult<()> {
+    /// A static colour bar below the swing, F from 0 to [`SCALE_MAX`], labelled at its ends:
+    /// the report's map, or side by side (`hued`) a grey ramp of the shades each method's
+    /// hue takes. Spanning the swing's width, it also keeps the view's extent steady.
+    fn log_scale(rec: &RecordingStream, hued: bool) -> rerun::RecordingStreamResult<()> {
         let pieces = 25;
         let (x0, width, y) = (-1.0f32, 2.0f32, 1.12f32);
         let strips = (0..pieces).map(|i| {
@@ -369,10 +368,20 @@ impl RopeLogger {
         });
         let colors = (0..pieces).map(|i| {
             let f = SCALE_MAX * (i as f64 + 0.5) / pieces as f64;
-            tension_colour(f)
+            if hued {
+                hue_shade([200, 200, 200], f)
+            } else {
+                tension_colour(f)
+            }
         });
         let mut labels = vec![String::new(); pieces];
-        labels[pieces / 2] = format!("tension: red F = 0 … yellow F ≥ {SCALE_MAX} m g");
+        labels[pieces / 2] = if hued {
+            format!(
+                "tension: dark F = 0 … light F ≥ {SCALE_MAX} m g, each rope in its method's colour"
+            )
+        } else {
+            format!("tension: red F = 0 … yellow F ≥ {SCALE_MAX} m g")
+        };
         rec.log_static(
             path::SCALE,
             &rerun::LineStrips2D::new(strips)
@@ -575,11 +584,11 @@ impl RopeLogger {
         };
         let shared = [path::SEGMENTS, path::TIPS, path::PROFILES];
         if self.keeping == Keeping::Everything && !instants.is_empty() {
-            SharedShapes::of(&instants, lane_of).send(&self.rec, shared, times(&instants))?;
+            SharedShapes::of(&instants, lane_of, true).send(&self.rec, shared, times(&instants))?;
         }
         if live_due && let (Some(live), Some(now)) = (&self.live, instants.last()) {
             // Static: one instant, which replaces the one before.
-            SharedShapes::of(std::slice::from_ref(now), lane_of).send(
+            SharedShapes::of(std::slice::from_ref(now), lane_of, true).send(
                 &live.rec,
                 shared,
                 Vec::new(),
@@ -637,8 +646,13 @@ impl RopeLogger {
         let then = std::mem::take(&mut self.then);
         let times = timelines(then.iter().map(|t| t.time), then.iter().map(|t| t.step));
         let instants: Vec<Vec<&Frame>> = then.iter().map(|t| t.frames.iter().collect()).collect();
-        let shapes = SharedShapes::of(&instants, |f: &Frame| style_of(&self.lanes, f));
-        if self.lanes.len() > 1 {
+        let side_by_side = self.lanes.len() > 1;
+        let shapes = SharedShapes::of(
+            &instants,
+            |f: &Frame| style_of(&self.lanes, f),
+            side_by_side,
+        );
+        if side_by_side {
             return shapes.send(
                 &self.rec,
                 [path::THEN_SEGMENTS, path::THEN_TIPS, ""],
@@ -933,16 +947,17 @@ struct SharedShapes {
     rope_lengths: Vec<usize>,
     tips: Vec<[f32; 2]>,
     tip_colours: Vec<rerun::Color>,
-    names: Vec<&'static str>,
     profiles: Vec<Vec<[f32; 2]>>,
     per_instant: Vec<usize>,
 }
 
 impl SharedShapes {
-    /// The shapes of `instants`, each frame's colour and name from `lane_of`.
+    /// The shapes of `instants`, each frame's colour from `lane_of`; `hued`: each rope in
+    /// its method's hue, tension its shade (side by side), else in the report's tension map.
     fn of(
         instants: &[Vec<&Frame>],
         lane_of: impl Fn(&Frame) -> (rerun::Color, &'static str),
+        hued: bool,
     ) -> Self {
         let mut shapes = Self {
             ropes: Vec::new(),
@@ -950,7 +965,6 @@ impl SharedShapes {
             rope_lengths: Vec::with_capacity(instants.len()),
             tips: Vec::new(),
             tip_colours: Vec::new(),
-            names: Vec::new(),
             profiles: Vec::new(),
             per_instant: Vec::with_capacity(instants.len()),
         };
@@ -958,13 +972,17 @@ impl SharedShapes {
             let before = shapes.ropes.len();
             for f in instant {
                 let nodes: Vec<[f32; 2]> = f.nodes.iter().map(xy).collect();
-                let (strips, colours) = shaded_strips(&nodes, &f.tension, SHADE);
+                let (colour, _) = lane_of(f);
+                let [r, g, b, _] = colour.to_array();
+                let (strips, colours) = if hued {
+                    shaded_strips(&nodes, &f.tension, SHADE, |t| hue_shade([r, g, b], t))
+                } else {
+                    shaded_strips(&nodes, &f.tension, SHADE, tension_colour)
+                };
                 shapes.ropes.extend(strips);
                 shapes.rope_colours.extend(colours);
-                let (colour, name) = lane_of(f);
                 shapes.tips.push(xy(&f.tip()));
                 shapes.tip_colours.push(colour);
-                shapes.names.push(name);
                 shapes.profiles.push(profile(f));
             }
             shapes.rope_lengths.push(shapes.ropes.len() - before);
@@ -995,7 +1013,6 @@ impl SharedShapes {
             rerun::Points2D::update_fields()
                 .with_positions(self.tips)
                 .with_colors(self.tip_colours.iter().copied())
-                .with_labels(self.names)
                 .columns(self.per_instant.iter().copied())?,
         )?;
         if profiles.is_empty() {
@@ -1058,25 +1075,30 @@ impl FrameSink for RopeLogger {
         for lane in &self.lanes {
             self.style_lane(lane)?;
         }
-        // The shared shapes' styling; their colours and names come with each instant.
+        // The shared shapes' styling; their colours come with each instant, and the legend
+        // names them (a label at each tip piled up where the tips met).
         self.rec.log_static(
             path::TIPS,
-            &rerun::Points2D::update_fields()
-                .with_radii([0.018])
-                .with_show_labels(true),
+            &rerun::Points2D::update_fields().with_radii([0.018]),
         )?;
+        Self::log_scale(&self.rec, true)?;
         self.rec.log_static(
             path::PROFILES,
             &rerun::LineStrips2D::update_fields().with_radii([0.008]),
         )?;
         let names: Vec<&str> = self.lanes.iter().map(|l| l.name).collect();
+        // The methods' colours, a row each, upward from above the caption (which is at
+        // y = −0.25), however many there are.
+        let rows = plans.len();
         self.rec.log_static(
             path::LEGEND,
-            &rerun::Points2D::new((0..plans.len()).map(|i| [-0.85f32, -0.55 + 0.1 * i as f32]))
-                .with_radii([0.025])
-                .with_colors(self.lanes.iter().map(|l| l.colour))
-                .with_labels(names.iter().map(|n| format!("{n} (tip)")))
-                .with_show_labels(true),
+            &rerun::Points2D::new(
+                (0..rows).map(|i| [-0.85f32, -0.45 - 0.1 * (rows - 1 - i) as f32]),
+            )
+            .with_radii([0.025])
+            .with_colors(self.lanes.iter().map(|l| l.colour))
+            .with_labels(names.iter().map(|n| n.to_string()))
+            .with_show_labels(true),
         )?;
         let headline = match plans.first() {
             Some(p) => format!(

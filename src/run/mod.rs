@@ -22,4 +22,4 @@ pub use config::{RunConfig, RunPlan};
 pub use cost::{Cost, Limits};
 pub use simulate::Frame;
 pub use sink::FrameSink;
-pub use summary::{Status, Summary};
+pub use summary::{Status, Summary, Verdict};

@@ -99,6 +99,35 @@ pub struct Xy {
     pub y: f64,
 }
 
+/// What a run's exit status says of it, most serious first: a script tells them apart by the
+/// status alone.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Verdict {
+    /// The recording could not be completed (status 1).
+    RecordingIncomplete,
+    /// A method diverged (3; side by side, any one of them).
+    Diverged,
+    /// Ctrl-C or SIGTERM ended the run (130).
+    Interrupted,
+    /// The run ended as asked, but its live error estimate passed `--tolerance` (4).
+    ToleranceMissed,
+    /// The run ended as asked (0).
+    Ok,
+}
+
+impl Verdict {
+    /// The process's exit status for it.
+    pub fn exit_status(self) -> u8 {
+        match self {
+            Self::Ok => 0,
+            Self::RecordingIncomplete => 1,
+            Self::Diverged => 3,
+            Self::ToleranceMissed => 4,
+            Self::Interrupted => 130,
+        }
+    }
+}
+
 /// Everything a run reports, written by `--summary FILE`.
 #[derive(Clone, Debug, Serialize)]
 pub struct Summary {
@@ -365,6 +394,27 @@ impl Summary {
             self.wall_seconds, self.cpu_seconds, self.ns_per_segment_step, self.frames_logged
         );
         text
+    }
+}
+
+impl Summary {
+    /// What the run's exit status says: the recording's failure first, then a divergence
+    /// (side by side, any method's: enough for the status to say so), an interrupt, a
+    /// tolerance the live estimate passed, and otherwise a run that ended as asked.
+    pub fn verdict(&self) -> Verdict {
+        if self.recording_error.is_some() {
+            return Verdict::RecordingIncomplete;
+        }
+        let statuses = || std::iter::once(self.status).chain(self.methods.iter().map(|m| m.status));
+        if statuses().any(|s| s == Status::Diverged) {
+            Verdict::Diverged
+        } else if statuses().any(|s| s == Status::Interrupted) {
+            Verdict::Interrupted
+        } else if self.tolerance_met == Some(false) {
+            Verdict::ToleranceMissed
+        } else {
+            Verdict::Ok
+        }
     }
 }
 

@@ -134,7 +134,7 @@ fn work_precision<DB: DrawingBackend>(
     let metrics: [(Metric, [f64; 3]); 2] = [
         (
             (
-                "tip error at the final time (string lengths)".to_owned(),
+                "largest tip error over the frames (string lengths)".to_owned(),
                 |r| r.tip_error,
             ),
             TIP_TARGETS,
@@ -670,11 +670,13 @@ mod tests {
             status: Status::Ok,
             energy_deviation: Some(tip * 0.1),
             tip_error: Some(tip),
+            final_tip_error: Some(tip),
             shape_error: Some(tip),
             cpu_seconds: cpu,
             ns_per_segment_step: 1.0,
             tip: None,
             shape: None,
+            frame_tips: Vec::new(),
         }
     }
 

@@ -5,11 +5,11 @@
 //! at every step and interpolated to the frame's time). The same data fit each method's
 //! error model over all the scenes, with its safety factor measured.
 
+pub use super::trajectory::Trajectory;
 use crate::error::Diverged;
 use crate::methods::MethodKind;
 use crate::methods::error_model::ErrorModel;
 use crate::model::Scene;
-use crate::model::geometry::{self, Point};
 use crate::run::simulate::{self, Options};
 use rayon::prelude::*;
 
@@ -57,48 +57,6 @@ impl Default for CheckSpec {
             duration: 3.0,
             reference_segments: 1600,
         }
-    }
-}
-
-/// The reference's tip at every one of its steps, to be read at any time.
-pub struct Trajectory {
-    dt: f64,
-    tips: Vec<Point>,
-}
-
-impl Trajectory {
-    /// [`MethodKind::REFERENCE`] at `segments` and its default step, from `scene` to
-    /// `duration`.
-    pub fn compute(scene: &Scene, segments: usize, duration: f64) -> anyhow::Result<Self> {
-        let method = MethodKind::REFERENCE;
-        let dt = method.default_dt(segments);
-        let mut run = method.build(scene, segments, dt)?;
-        let steps = (duration / dt).ceil() as usize + 2;
-        let mut tips = Vec::with_capacity(steps + 1);
-        tips.push(geometry::tip(run.angles()));
-        for _ in 0..steps {
-            run.step()
-                .map_err(|d| anyhow::anyhow!("the reference from the {scene} failed: {d}"))?;
-            tips.push(geometry::tip(run.angles()));
-        }
-        Ok(Self { dt, tips })
-    }
-
-    /// The tip at time `t`: the cubic through the four nearest steps (its error, of order
-    /// k⁴, is far below the reference's own).
-    pub fn at(&self, t: f64) -> Point {
-        let x = t / self.dt;
-        let last = self.tips.len().saturating_sub(1);
-        let i = (x.floor() as usize).clamp(1, last.saturating_sub(2).max(1));
-        let u = x - i as f64; // in [0, 1) inside the bracket [i, i + 1]
-        let p = |j: usize| self.tips[j.min(last)].coords;
-        let (a, b, c, d) = (p(i - 1), p(i), p(i + 1), p(i + 2));
-        // Lagrange weights at nodes −1, 0, 1, 2.
-        let wa = -u * (u - 1.0) * (u - 2.0) / 6.0;
-        let wb = (u + 1.0) * (u - 1.0) * (u - 2.0) / 2.0;
-        let wc = -(u + 1.0) * u * (u - 2.0) / 2.0;
-        let wd = (u + 1.0) * u * (u - 1.0) / 6.0;
-        Point::from(a * wa + b * wb + c * wc + d * wd)
     }
 }
 

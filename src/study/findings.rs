@@ -115,11 +115,12 @@ impl Findings {
     pub fn markdown(&self, reference: &Reference, command: &str) -> String {
         let mut s = format!("# Study findings\n\nMade by `{command}`.\n\n");
         s += &format!(
-            "Reference: {}. Estimated error of the reference tip: {:.1e} from N, {:.1e} from k; tip errors below {:.1e} are not resolved.\n\n",
+            "Reference: {}. Estimated error of the reference tip, the largest over the frames: {:.1e} from N, {:.1e} from k; tip errors below {:.1e} are not resolved. A run's tip error is the largest over its frames ({} a time unit), each against the reference at that frame's time; `study.csv` also keeps the error at the final time alone (`final_tip_error`).\n\n",
             reference.description,
             reference.error_in_h,
             reference.error_in_k,
-            reference.error_estimate()
+            reference.error_estimate(),
+            super::grid::FRAMES_PER_UNIT,
         );
         s += &self.convergence_section();
         s += &self.stability_section();

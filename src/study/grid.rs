@@ -8,9 +8,15 @@ use crate::model::Scene;
 use crate::model::geometry::{self, Point};
 use crate::run::simulate;
 use rayon::prelude::*;
+use std::ops::ControlFlow;
 
 /// Points along the string (s = 0, 0.1, …, 1) where shapes are compared.
 pub const SHAPE_POINTS: usize = 11;
+
+/// Frames per time unit at which a run's tip is measured against the reference, as
+/// `rope run` logs them by default: the tip error is the largest over these frames, as
+/// `--tolerance` and the live estimate mean it.
+pub const FRAMES_PER_UNIT: f64 = 30.0;
 
 /// What to run.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -106,8 +112,12 @@ pub struct Row {
     pub status: Status,
     /// max |E − E(step 10)| / |E|, the report's criterion.
     pub energy_deviation: Option<f64>,
-    /// Tip position at the final time against the reference.
+    /// The largest distance of the tip from the reference's over the frames
+    /// ([`FRAMES_PER_UNIT`] a time unit, each at the step nearest its time).
     pub tip_error: Option<f64>,
+    /// The tip's distance from the reference's at the final time alone (errors that cancel
+    /// by chance at that instant show here as accuracy; [`Row::tip_error`] does not).
+    pub final_tip_error: Option<f64>,
     /// RMS distance of the shape (s = 0, 0.1, …, 1) from the reference's.
     pub shape_error: Option<f64>,
     pub cpu_seconds: f64,
@@ -115,6 +125,9 @@ pub struct Row {
     /// Final tip and shape (for the reference and for charts).
     pub tip: Option<Point>,
     pub shape: Option<Vec<Point>>,
+    /// The tip at each frame, with the frame's time (to measure [`Row::tip_error`]; not
+    /// kept in `study.csv`).
+    pub frame_tips: Vec<(f64, Point)>,
 }
 
 /// Positions at s = 0, 0.1, …, 1 along the string with segment angles `angles`.
@@ -136,11 +149,13 @@ pub fn run_cell(scene: &Scene, duration: f64, method: MethodKind, segments: usiz
         status: Status::Ok,
         energy_deviation: None,
         tip_error: None,
+        final_tip_error: None,
         shape_error: None,
         cpu_seconds: 0.0,
         ns_per_segment_step: 0.0,
         tip: None,
         shape: None,
+        frame_tips: Vec::new(),
     };
     let mut solver = match method.build(scene, segments, dt) {
         Ok(solver) => solver,
@@ -152,7 +167,16 @@ pub fn run_cell(scene: &Scene, duration: f64, method: MethodKind, segments: usiz
         }
     };
     let started = cpu_time::ThreadTime::now();
-    let outcome = simulate::run_to(solver.as_mut(), duration);
+    let mut frame_tips = Vec::with_capacity((duration * FRAMES_PER_UNIT) as usize + 2);
+    let options = simulate::Options {
+        duration,
+        log_rate: FRAMES_PER_UNIT,
+        frame_grid: None,
+    };
+    let outcome = simulate::run(solver.as_mut(), &options, None, |frame| {
+        frame_tips.push((frame.time, frame.tip()));
+        ControlFlow::Continue(())
+    });
     row.cpu_seconds = started.elapsed().as_secs_f64();
     row.ns_per_segment_step =
         row.cpu_seconds * 1e9 / (outcome.steps.max(1) as f64 * segments as f64);
@@ -168,6 +192,7 @@ pub fn run_cell(scene: &Scene, duration: f64, method: MethodKind, segments: usiz
     solver.observe(&mut obs);
     row.tip = Some(outcome.tip);
     row.shape = Some(shape(&obs.angle));
+    row.frame_tips = frame_tips;
     row
 }
 

@@ -2,7 +2,8 @@
 //! stability, energy deviation, solution error against a converged reference, and CPU cost;
 //! then what the rows say, as findings, charts and (optionally) a Rerun recording.
 //!
-//! * [`grid`]: the cells, one run each, in parallel; [`reference`]: the converged solution;
+//! * [`grid`]: the cells, one run each, in parallel; [`reference`]: the converged solution,
+//!   kept at every step ([`trajectory`]) so that each run is measured at every frame;
 //! * [`findings`]: convergence orders, stability limits, the cheapest accurate runs;
 //! * [`report`]: `study.csv`; [`charts`]: SVG and PNG; [`record`]: the same into Rerun;
 //! * [`shard`]: the grid split over processes or machines (`--shard`, `--reference-only`,
@@ -31,6 +32,7 @@ pub mod report;
 pub mod shard;
 pub mod tolerance_chart;
 pub mod tolerance_check;
+pub mod trajectory;
 
 pub use grid::{Row, Spec, Status, fit, run_cell, run_grid, shape};
 pub use reference::{Reference, measure_errors, reference};

@@ -1,7 +1,9 @@
 //! The converged solution a study measures errors against: a method of known order at a fine N,
-//! extrapolated in N, with its own error estimated.
+//! extrapolated in N, with its own error estimated, kept at every step so that a run's tip
+//! can be measured against it at every frame.
 
-use super::grid::{Row, SHAPE_POINTS, Status, run_cell};
+use super::grid::{FRAMES_PER_UNIT, Row, shape};
+use super::trajectory::{Kept, Trajectory};
 use crate::methods::MethodKind;
 use crate::model::{Point, Scene};
 use rayon::prelude::*;
@@ -9,11 +11,18 @@ use rayon::prelude::*;
 /// A converged solution the study trusts, and how far it can be trusted.
 #[derive(Clone, Debug)]
 pub struct Reference {
+    /// The tip at the final time.
     pub tip: Point,
+    /// The shape (s = 0, 0.1, …, 1) at the final time.
     pub shape: Vec<Point>,
-    /// |Richardson correction| in N: the error left by the finest N, estimated.
+    /// The tip at every step of the finest run, extrapolated: what a run's frames are
+    /// measured against.
+    pub path: Trajectory,
+    /// |Richardson correction| in N, the largest over the frames: the error left by the
+    /// finest N, estimated.
     pub error_in_h: f64,
-    /// Change of the finest run when its time step is halved.
+    /// The largest change of the finest run's tip over the frames when its time step is
+    /// halved.
     pub error_in_k: f64,
     pub description: String,
 }
@@ -38,59 +47,81 @@ pub fn reference_runs(finest: usize) -> [(MethodKind, usize, f64); 3] {
     ]
 }
 
+/// The instants at which a run of `duration` is measured: its frames, [`FRAMES_PER_UNIT`]
+/// a time unit.
+pub fn frame_times(duration: f64) -> impl Iterator<Item = f64> {
+    let frames = (duration * FRAMES_PER_UNIT).round() as u64;
+    (0..=frames).map(|j| j as f64 / FRAMES_PER_UNIT)
+}
+
 /// The reference: [`MethodKind::REFERENCE`] at `finest` and `finest / 2` segments,
 /// extrapolated in N by Richardson (x + (x − x_half) / (2^p − 1), p its order: 2 for the
-/// chain), with the time step checked by halving it at the finest N.
+/// chain) at every step of the finest run, with the time step checked by halving it at the
+/// finest N. Its own errors are the largest over the frames.
 pub fn reference(scene: &Scene, duration: f64, finest: usize) -> anyhow::Result<Reference> {
-    let run = |method: MethodKind, n: usize, dt: f64| -> anyhow::Result<(Point, Vec<Point>)> {
-        let row = run_cell(scene, duration, method, n, dt);
-        match (row.status, row.tip, row.shape) {
-            (Status::Ok, Some(tip), Some(shape)) => Ok((tip, shape)),
-            (status, ..) => {
-                anyhow::bail!("the reference run at N = {n}, k = {dt:e} failed: {status:?}")
-            }
-        }
-    };
     let runs = reference_runs(finest);
     let [(method, _, dt), (_, coarse_n, _), _] = runs;
-    let runs: Vec<_> = runs
+    let kept: Vec<Kept> = runs
         .into_par_iter()
-        .map(|(method, n, dt)| run(method, n, dt))
+        .map(|(method, n, dt)| {
+            Trajectory::keep(scene, method, n, dt, duration)
+                .map_err(|e| anyhow::anyhow!("the reference: {e}"))
+        })
         .collect::<anyhow::Result<_>>()?;
-    let [(tip_f, shape_f), (tip_c, shape_c), (tip_k, _)]: [(Point, Vec<Point>); 3] = runs
+    let [fine, coarse, halved]: [Kept; 3] = kept
         .try_into()
         .map_err(|_| anyhow::anyhow!("three reference runs expected"))?;
     // Richardson in h: x + (x − x_half) / (2^p − 1), p the method's order.
     let order = f64::from(method.descriptor().order_in_h);
     let extrapolate = |f: Point, c: Point| f + (f - c) / (2f64.powf(order) - 1.0);
-    let tip = extrapolate(tip_f, tip_c);
-    let shape: Vec<Point> = shape_f
-        .iter()
-        .zip(&shape_c)
-        .map(|(&f, &c)| extrapolate(f, c))
-        .collect();
+    let path = Trajectory::new(
+        dt,
+        fine.trajectory
+            .tips()
+            .iter()
+            .enumerate()
+            .map(|(i, &f)| extrapolate(f, coarse.trajectory.at(i as f64 * dt)))
+            .collect(),
+    );
+    let largest = |a: &Trajectory, b: &Trajectory| {
+        frame_times(duration)
+            .map(|t| (a.at(t) - b.at(t)).norm())
+            .fold(0.0, f64::max)
+    };
+    let (shape_f, shape_c) = (shape(&fine.angles), shape(&coarse.angles));
     Ok(Reference {
-        tip,
-        shape,
-        error_in_h: (tip - tip_f).norm(),
-        error_in_k: (tip_k - tip_f).norm(),
+        tip: extrapolate(fine.tip, coarse.tip),
+        shape: shape_f
+            .iter()
+            .zip(&shape_c)
+            .map(|(&f, &c)| extrapolate(f, c))
+            .collect(),
+        error_in_h: largest(&path, &fine.trajectory),
+        error_in_k: largest(&halved.trajectory, &fine.trajectory),
+        path,
         description: format!(
             "{method} method, Richardson extrapolation (order {order}) from N = {coarse_n} and {finest}, k = {dt:e}"
         ),
     })
 }
 
-/// Fills in each row's errors against the reference.
+/// Fills in each row's errors against the reference: the tip's at every frame and at the
+/// final time, the shape's at the final time.
 pub fn measure_errors(rows: &mut [Row], reference: &Reference) {
     for row in rows {
         if let (Some(tip), Some(shape)) = (row.tip, &row.shape) {
-            row.tip_error = Some((tip - reference.tip).norm());
+            row.final_tip_error = Some((tip - reference.tip).norm());
+            row.tip_error = row
+                .frame_tips
+                .iter()
+                .map(|&(t, tip)| (tip - reference.path.at(t)).norm())
+                .reduce(f64::max);
             let sum: f64 = shape
                 .iter()
                 .zip(&reference.shape)
                 .map(|(a, b)| (a - b).norm_squared())
                 .sum();
-            row.shape_error = Some((sum / SHAPE_POINTS as f64).sqrt());
+            row.shape_error = Some((sum / shape.len().max(1) as f64).sqrt());
         }
     }
 }

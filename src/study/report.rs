@@ -17,6 +17,7 @@ struct CsvRow {
     status: String,
     energy_deviation: String,
     tip_error: String,
+    final_tip_error: String,
     shape_error: String,
     cpu_seconds: String,
     ns_per_segment_step: String,
@@ -40,6 +41,7 @@ impl CsvRow {
             status: r.status.word().to_owned(),
             energy_deviation: opt(r.energy_deviation),
             tip_error: opt(r.tip_error),
+            final_tip_error: opt(r.final_tip_error),
             shape_error: opt(r.shape_error),
             cpu_seconds: format!("{:e}", r.cpu_seconds),
             ns_per_segment_step: format!("{:e}", r.ns_per_segment_step),
@@ -50,8 +52,8 @@ impl CsvRow {
 }
 
 impl CsvRow {
-    /// The row back, as far as the file keeps it (the final tip and shape are not kept:
-    /// they were needed only to measure the errors, which are).
+    /// The row back, as far as the file keeps it (the final tip and shape and the frames'
+    /// tips are not kept: they were needed only to measure the errors, which are).
     fn row(self) -> Result<Row, String> {
         let number = |name: &str, text: &str| -> Result<Option<f64>, String> {
             if text.is_empty() {
@@ -85,11 +87,13 @@ impl CsvRow {
             status,
             energy_deviation: number("energy_deviation", &self.energy_deviation)?,
             tip_error: number("tip_error", &self.tip_error)?,
+            final_tip_error: number("final_tip_error", &self.final_tip_error)?,
             shape_error: number("shape_error", &self.shape_error)?,
             cpu_seconds: required("cpu_seconds", &self.cpu_seconds)?,
             ns_per_segment_step: required("ns_per_segment_step", &self.ns_per_segment_step)?,
             tip: None,
             shape: None,
+            frame_tips: Vec::new(),
         })
     }
 }

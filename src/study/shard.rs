@@ -6,6 +6,7 @@
 
 use super::grid::{Row, Spec, sort_rows};
 use super::reference::Reference;
+use super::trajectory::Trajectory;
 use crate::methods::MethodKind;
 use crate::model::{Point, Scene};
 use std::path::{Path, PathBuf};
@@ -74,6 +75,10 @@ pub struct ReferenceFile {
     pub error_in_h: f64,
     pub error_in_k: f64,
     pub description: String,
+    /// The step between the points of `path`.
+    pub path_dt: f64,
+    /// The reference's tip at every step from t = 0, what frames are measured against.
+    pub path: Vec<[f64; 2]>,
 }
 
 impl ReferenceFile {
@@ -88,6 +93,8 @@ impl ReferenceFile {
             error_in_h: reference.error_in_h,
             error_in_k: reference.error_in_k,
             description: reference.description.clone(),
+            path_dt: reference.path.dt(),
+            path: reference.path.tips().iter().map(|p| [p.x, p.y]).collect(),
         }
     }
 
@@ -99,6 +106,10 @@ impl ReferenceFile {
             error_in_h: self.error_in_h,
             error_in_k: self.error_in_k,
             description: self.description.clone(),
+            path: Trajectory::new(
+                self.path_dt,
+                self.path.iter().map(|p| Point::new(p[0], p[1])).collect(),
+            ),
         }
     }
 }

@@ -153,10 +153,19 @@ impl Recording {
         self.temporal_values(entity, labels, |t: &rerun::components::Text| t.to_string())
     }
 
-    /// Each row of `entity` on the timelines: its `sim_time` and its points' labels.
-    pub fn point_labels_by_row(&self, entity: &str) -> Vec<(f64, Vec<String>)> {
+    /// Per row of `entity`'s points (by sim time), the methods they belong to, told by their
+    /// colours: side by side each method's tip is drawn in its colour (its finest chart
+    /// colour), and the legend names the colours.
+    pub fn point_methods_by_row(&self, entity: &str) -> Vec<(f64, Vec<String>)> {
         let timeline = rerun::TimelineName::from_static_str("sim_time");
-        let labels = rerun::Points2D::descriptor_labels().component;
+        let colours = rerun::Points2D::descriptor_colors().component;
+        let method_of = |c: &rerun::components::Color| {
+            let [r, g, b, _] = c.0.to_array();
+            rope::methods::MethodKind::ALL
+                .into_iter()
+                .find(|m| m.descriptor().colours.1 == [r, g, b])
+                .map_or_else(|| format!("rgb({r}, {g}, {b})"), |m| m.name().to_owned())
+        };
         let mut rows: Vec<(f64, Vec<String>)> = self
             .chunks
             .get(entity)
@@ -170,8 +179,8 @@ impl Recording {
                     .map(|col| col.times_raw().iter().map(|&ns| ns as f64 * 1e-9).collect())
                     .unwrap_or_default();
                 let names: Vec<Vec<String>> = c
-                    .iter_component::<rerun::components::Text>(labels)
-                    .map(|row| row.iter().map(|t| t.to_string()).collect())
+                    .iter_component::<rerun::components::Color>(colours)
+                    .map(|row| row.iter().map(method_of).collect())
                     .collect();
                 times.into_iter().zip(names).collect::<Vec<_>>()
             })

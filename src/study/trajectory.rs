@@ -1,0 +1,117 @@
+//! A run's tip at every one of its steps, to be read at any time: what a study's errors are
+//! measured against at every frame.
+
+use crate::methods::MethodKind;
+use crate::model::Scene;
+use crate::model::geometry::{self, Point};
+
+/// The tip at every step of a run of constant step `dt`, from t = 0.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Trajectory {
+    dt: f64,
+    tips: Vec<Point>,
+}
+
+/// A run kept at every step: its tip throughout, and its final state.
+pub struct Kept {
+    pub trajectory: Trajectory,
+    /// The tip at the final time (the step nearest `duration`, where a run ends).
+    pub tip: Point,
+    /// The segment angles there.
+    pub angles: Vec<f64>,
+}
+
+impl Trajectory {
+    /// The tips `tips`, one every `dt` from t = 0.
+    pub fn new(dt: f64, tips: Vec<Point>) -> Self {
+        Self { dt, tips }
+    }
+
+    /// [`MethodKind::REFERENCE`] at `segments` and its default step, from `scene` to
+    /// `duration`.
+    pub fn compute(scene: &Scene, segments: usize, duration: f64) -> anyhow::Result<Self> {
+        let method = MethodKind::REFERENCE;
+        Ok(Self::keep(
+            scene,
+            method,
+            segments,
+            method.default_dt(segments),
+            duration,
+        )?
+        .trajectory)
+    }
+
+    /// `method` at `segments` and step `dt` from `scene`, kept at every step to two steps
+    /// past `duration` (so that the cubic of [`Trajectory::at`] has its four points there),
+    /// with its state at the step a run to `duration` ends on.
+    pub fn keep(
+        scene: &Scene,
+        method: MethodKind,
+        segments: usize,
+        dt: f64,
+        duration: f64,
+    ) -> anyhow::Result<Kept> {
+        let mut run = method.build(scene, segments, dt)?;
+        let last = (duration / dt).round() as usize;
+        let mut tips = Vec::with_capacity(last + 3);
+        tips.push(geometry::tip(run.angles()));
+        let mut end = None;
+        for step in 1..=last + 2 {
+            if step - 1 == last {
+                end = Some(run.angles().to_vec());
+            }
+            run.step().map_err(|d| {
+                anyhow::anyhow!("the run of the {method} method at N = {segments}, k = {dt:e} from the {scene} failed: {d}")
+            })?;
+            tips.push(geometry::tip(run.angles()));
+        }
+        let angles = end.unwrap_or_else(|| run.angles().to_vec());
+        Ok(Kept {
+            tip: tips[last],
+            angles,
+            trajectory: Self { dt, tips },
+        })
+    }
+
+    /// The step between kept tips.
+    pub fn dt(&self) -> f64 {
+        self.dt
+    }
+
+    /// The kept tips, one a step from t = 0.
+    pub fn tips(&self) -> &[Point] {
+        &self.tips
+    }
+
+    /// The tip at time `t`: the cubic through the four nearest steps (its error, of order
+    /// k⁴, is far below the reference's own).
+    pub fn at(&self, t: f64) -> Point {
+        let x = t / self.dt;
+        let last = self.tips.len().saturating_sub(1);
+        let i = (x.floor() as usize).clamp(1, last.saturating_sub(2).max(1));
+        let u = x - i as f64; // in [0, 1) inside the bracket [i, i + 1]
+        let p = |j: usize| self.tips[j.min(last)].coords;
+        let (a, b, c, d) = (p(i - 1), p(i), p(i + 1), p(i + 2));
+        // Lagrange weights at nodes −1, 0, 1, 2.
+        let wa = -u * (u - 1.0) * (u - 2.0) / 6.0;
+        let wb = (u + 1.0) * (u - 1.0) * (u - 2.0) / 2.0;
+        let wc = -(u + 1.0) * u * (u - 2.0) / 2.0;
+        let wd = (u + 1.0) * u * (u - 1.0) / 6.0;
+        Point::from(a * wa + b * wb + c * wc + d * wd)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_cubic_path_is_read_exactly_between_its_steps() {
+        let path = |t: f64| Point::new(t * t * t - 2.0 * t, 0.5 * t * t + 1.0);
+        let dt = 0.1;
+        let kept = Trajectory::new(dt, (0..=30).map(|i| path(i as f64 * dt)).collect());
+        for t in [0.0, 0.05, 0.1234, 1.5, 2.77, 2.95] {
+            assert!((kept.at(t) - path(t)).norm() < 1e-12, "t = {t}");
+        }
+    }
+}
