@@ -10,6 +10,7 @@ use common::cli::{
     stderr_lines_until, stderr_of, summary, wait_for,
 };
 use rerun::external::re_grpc_client;
+use rope::recording::live::HistoryRates;
 use std::process::Child;
 use std::time::{Duration, Instant};
 
@@ -81,7 +82,7 @@ fn served_and_saved_a_late_viewer_gets_the_history_the_file_every_frame_and_sigt
     let mut server = start(&[
         "run",
         "--duration",
-        "2",
+        "4",
         "--serve-grpc",
         &format!("127.0.0.1:{port}"),
         "--save",
@@ -97,10 +98,14 @@ fn served_and_saved_a_late_viewer_gets_the_history_the_file_every_frame_and_sigt
     }
     std::thread::sleep(Duration::from_millis(200));
     let frames = summary(&json)["frames_logged"].as_u64().unwrap() as usize;
-    assert_eq!(frames, 121);
+    assert_eq!(frames, 241);
 
-    // The history: the rope then at t = 0 and 2 (a shape every 2 time units), the plots at
-    // 1.5 rows a time unit (every 40th frame), the parameters with the page's budget.
+    // The history: the rope then at t = 0 and 4 (a shape every 4 time units), the plots at
+    // 0.75 rows a time unit (every 80th frame at 60 a time unit), the parameters with the
+    // page's budget.
+    let rates = HistoryRates::DEFAULT;
+    assert_eq!(rates.shape_interval(), 4.0);
+    assert_eq!(rates.series_stride(60.0), 80);
     let viewer = LateViewer::join(port);
     let mut rec = Recording::default();
     let complete = viewer.read_until(&mut rec, Duration::from_secs(20), |r| {
@@ -109,7 +114,7 @@ fn served_and_saved_a_late_viewer_gets_the_history_the_file_every_frame_and_sigt
     let then = rec.sim_times("then/segments");
     assert!(complete, "the late viewer got the rope then at {then:?}");
     assert_eq!(then.len(), 2, "{then:?}");
-    for (t, expected) in then.iter().zip([0.0, 2.0]) {
+    for (t, expected) in then.iter().zip([0.0, 4.0]) {
         assert!((t - expected).abs() < 1e-9, "{then:?}");
     }
     assert_eq!(
@@ -121,7 +126,7 @@ fn served_and_saved_a_late_viewer_gets_the_history_the_file_every_frame_and_sigt
     assert_eq!(
         energy.len(),
         4,
-        "1.5 rows a time unit over [0, 2]: {energy:?}"
+        "0.75 rows a time unit over [0, 4]: {energy:?}"
     );
     assert!(rec.has("parameters"));
 
@@ -160,8 +165,9 @@ fn an_endless_served_run_gives_a_late_viewer_its_history_and_a_live_picture() {
     wait_listening(port);
     std::thread::sleep(Duration::from_millis(1500));
     // By now the run is at t ≈ 6; the history's viewer gets the rope then from t = 0, a
-    // shape every 2 time units, none missing; the live one gets pictures that replace
+    // shape every 4 time units, none missing; the live one gets pictures that replace
     // themselves.
+    let every = HistoryRates::DEFAULT.shape_interval();
     let history = LateViewer::join(port);
     let live = LateViewer::join(port + 1);
     let mut rec = Recording::default();
@@ -175,8 +181,8 @@ fn an_endless_served_run_gives_a_late_viewer_its_history_and_a_live_picture() {
     assert_eq!(times.first().copied(), Some(0.0), "history from t = 0");
     for (i, t) in times.iter().enumerate() {
         assert!(
-            (t - 2.0 * i as f64).abs() < 0.02,
-            "a shape every 2 time units: {times:?}"
+            (t - every * i as f64).abs() < 0.02,
+            "a shape every {every} time units: {times:?}"
         );
     }
     let mut now = Recording::default();

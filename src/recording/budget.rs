@@ -23,18 +23,21 @@ use nalgebra::Vector2;
 pub const WEB_VIEWER_CEILING: f64 = 2.3 * 1024.0 * 1024.0 * 1024.0;
 
 /// What the page holds before the history starts (the viewer itself, its fonts and render
-/// buffers, the blueprint, the live picture): the page's WebAssembly memory half a minute
-/// into a served run in headless Chromium, 628.5 MB (docs/measurements.md, "A page left
-/// open").
-pub const PAGE_BASELINE: f64 = 630.0e6;
+/// buffers, the blueprint, the live picture): the largest WebAssembly memory a page held a
+/// minute into a served run in headless Chromium, 760.1 MB (other soaks: 624.1, 628.5 and
+/// 658.6 MB; docs/measurements.md, "A page left open").
+pub const PAGE_BASELINE: f64 = 760.0e6;
 
 /// How many bytes the web viewer's memory grows by per byte of Arrow data of history it is
-/// sent (the Arrow arrays' allocated size, which rounds each small buffer up): 1.1, the
-/// page's WebAssembly memory growing 134.5 MB (from 628.5 MB at 30 s to 763.0 MB at 249 s;
-/// it grows in steps of 33.6 MB, so 0.8 to 1.4) while about 122 MB of history was sent
-/// (1 930 time units at 63.3 kB), in a browser soak at `--history-rate 50`
-/// (docs/measurements.md, "A page left open").
-pub const VIEWER_PER_BYTE: f64 = 1.1;
+/// sent (the Arrow arrays' allocated size, which rounds each small buffer up): 1.8, the
+/// largest measured over a long soak of the default page. At 1.5 rows a time unit (2.0 kB
+/// sent per time unit) the page's WebAssembly memory grew 168.1 MB over 46 226 time units,
+/// 3.6 kB a time unit; it grows in steps of 33.6 MB, so 1.45 to 2.2
+/// (docs/measurements.md, "A page left open"). A soak at `--history-rate 50` (63.3 kB a
+/// time unit, mostly the rope's shapes) measured 1.1: small chunks of time series cost the
+/// viewer more per byte than large shapes. The default rate was lowered to keep a week
+/// within this figure.
+pub const VIEWER_PER_BYTE: f64 = 1.8;
 
 /// Time units of history written to measure its bytes.
 pub const SAMPLE_UNITS: f64 = 4.0 * HISTORY_SEND_UNITS;

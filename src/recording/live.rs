@@ -44,10 +44,11 @@ impl HistoryRates {
     /// segments costs about as much as three rows of every series.
     pub const SHAPES_PER_ROW: f64 = 1.0 / 3.0;
 
-    /// The default: 1.5 rows per time unit and a shape every 2 time units, which a browser
-    /// page holds for about 10 days of a run of one method at realtime, 5 days of three side
-    /// by side (the budget the run prints).
-    pub const DEFAULT: Self = Self::at(1.5);
+    /// The default: 0.75 rows per time unit (3 every 4 time units) and a shape every 4 time
+    /// units, which a browser page holds for more than a week of a run of one method at
+    /// realtime, and more than 3 days of three side by side (the budget the run prints, from
+    /// the growth measured in a browser: docs/measurements.md, "A page left open").
+    pub const DEFAULT: Self = Self::at(0.75);
 
     /// Rates for `series_per_unit` rows per time unit (`--history-rate`).
     pub const fn at(series_per_unit: f64) -> Self {
@@ -131,10 +132,10 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_default_history_keeps_a_row_and_a_half_a_time_unit_and_a_shape_every_two() {
+    fn the_default_history_keeps_three_rows_every_four_time_units_and_a_shape_every_four() {
         let rates = HistoryRates::DEFAULT;
-        assert_eq!(rates.series_stride(60.0), 40);
-        assert!((rates.shape_interval() - 2.0).abs() < 1e-12);
+        assert_eq!(rates.series_stride(60.0), 80);
+        assert!((rates.shape_interval() - 4.0).abs() < 1e-12);
         assert_eq!(HistoryRates::at(100.0).series_stride(60.0), 1);
     }
 }
