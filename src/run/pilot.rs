@@ -329,8 +329,8 @@ fn committed_covers(duration: f64) -> bool {
 
 /// Of `method`'s own model (from its pilots) and its committed one for `scene` to `duration`
 /// ([`tolerance::committed_model`]), the one that asks fewer segments for `eps`, the
-/// committed one only where it covers the run's duration; `None` without an own model. Both bound measured errors: the own model the scene's at N ≤ 64,
-/// extrapolated; the committed one the release atlas's at this angle's neighbours, or the
+/// committed one only where it covers the run's duration; `None` without an own model. Both
+/// bound measured errors: the own model the scene's at N ≤ 64, extrapolated; the committed one the release atlas's at this angle's neighbours, or the
 /// worst of six scenes, up to large N. Where a whip's error constant falls at large N, which
 /// the pilots cannot see, the committed model is the tighter (from 30°: 0.49/N against the
 /// pilots' 0.84/N).
