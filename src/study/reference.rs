@@ -3,7 +3,7 @@
 //! can be measured against it at every frame.
 
 use super::grid::{FRAMES_PER_UNIT, Row, shape};
-use super::trajectory::{Kept, Trajectory};
+use super::trajectory::{Kept, Trajectory, frame_times};
 use crate::methods::MethodKind;
 use crate::model::{Point, Scene};
 use rayon::prelude::*;
@@ -47,13 +47,6 @@ pub fn reference_runs(finest: usize) -> [(MethodKind, usize, f64); 3] {
     ]
 }
 
-/// The instants at which a run of `duration` is measured: its frames, [`FRAMES_PER_UNIT`]
-/// a time unit.
-pub fn frame_times(duration: f64) -> impl Iterator<Item = f64> {
-    let frames = (duration * FRAMES_PER_UNIT).round() as u64;
-    (0..=frames).map(|j| j as f64 / FRAMES_PER_UNIT)
-}
-
 /// The reference: [`MethodKind::REFERENCE`] at `finest` and `finest / 2` segments,
 /// extrapolated in N by Richardson (x + (x − x_half) / (2^p − 1), p its order: 2 for the
 /// chain) at every step of the finest run, with the time step checked by halving it at the
@@ -83,11 +76,8 @@ pub fn reference(scene: &Scene, duration: f64, finest: usize) -> anyhow::Result<
             .map(|(i, &f)| extrapolate(f, coarse.trajectory.at(i as f64 * dt)))
             .collect(),
     );
-    let largest = |a: &Trajectory, b: &Trajectory| {
-        frame_times(duration)
-            .map(|t| (a.at(t) - b.at(t)).norm())
-            .fold(0.0, f64::max)
-    };
+    // Its own errors, the largest over the frames a study measures its runs at.
+    let frames = frame_times(duration, FRAMES_PER_UNIT);
     let (shape_f, shape_c) = (shape(&fine.angles), shape(&coarse.angles));
     Ok(Reference {
         tip: extrapolate(fine.tip, coarse.tip),
@@ -96,8 +86,8 @@ pub fn reference(scene: &Scene, duration: f64, finest: usize) -> anyhow::Result<
             .zip(&shape_c)
             .map(|(&f, &c)| extrapolate(f, c))
             .collect(),
-        error_in_h: largest(&path, &fine.trajectory),
-        error_in_k: largest(&halved.trajectory, &fine.trajectory),
+        error_in_h: path.largest_gap(&fine.trajectory, &frames),
+        error_in_k: halved.trajectory.largest_gap(&fine.trajectory, &frames),
         path,
         description: format!(
             "{method} method, Richardson extrapolation (order {order}) from N = {coarse_n} and {finest}, k = {dt:e}"

@@ -5,6 +5,7 @@
 //! its default step and at its tolerance step, that also holds EPS.
 
 use super::estimate_check::Trajectory;
+use super::trajectory::frame_times;
 use crate::methods::MethodKind;
 use crate::methods::tolerance;
 use crate::model::{Point, Scene};
@@ -158,14 +159,11 @@ fn order_and_own_error(
     fine: &Trajectory,
     duration: f64,
 ) -> (f64, f64) {
-    let frames = frame_times(duration);
-    let largest = |a: &Trajectory, b: &Trajectory| {
-        frames
-            .iter()
-            .map(|&t| (a.at(t) - b.at(t)).norm())
-            .fold(0.0, f64::max)
-    };
-    let (step_coarse, step_fine) = (largest(coarse, half), largest(fine, coarse));
+    let frames = frame_times(duration, LOG_RATE);
+    let (step_coarse, step_fine) = (
+        coarse.largest_gap(half, &frames),
+        fine.largest_gap(coarse, &frames),
+    );
     let order = if step_fine > 0.0 {
         (step_coarse / step_fine).log2().clamp(1.0, 2.0)
     } else {
@@ -193,12 +191,6 @@ pub fn grid_steps(method: MethodKind, segments: usize) -> Vec<f64> {
     } else {
         vec![default, tolerance]
     }
-}
-
-/// The frame times of a run of `duration` at [`LOG_RATE`].
-fn frame_times(duration: f64) -> Vec<f64> {
-    let frames = (duration * LOG_RATE).round() as usize;
-    (0..=frames).map(|j| j as f64 / LOG_RATE).collect()
 }
 
 /// One run measured against the reference.

@@ -21,6 +21,13 @@ pub struct Kept {
     pub angles: Vec<f64>,
 }
 
+/// The frame times of a run of `duration` at `rate` frames a time unit: 0, 1/rate, … to the
+/// frame nearest `duration`.
+pub fn frame_times(duration: f64, rate: f64) -> Vec<f64> {
+    let frames = (duration * rate).round() as usize;
+    (0..=frames).map(|j| j as f64 / rate).collect()
+}
+
 impl Trajectory {
     /// The tips `tips`, one every `dt` from t = 0.
     pub fn new(dt: f64, tips: Vec<Point>) -> Self {
@@ -81,6 +88,14 @@ impl Trajectory {
     /// The kept tips, one a step from t = 0.
     pub fn tips(&self) -> &[Point] {
         &self.tips
+    }
+
+    /// The largest distance between this path's tip and `other`'s at `times`.
+    pub fn largest_gap(&self, other: &Self, times: &[f64]) -> f64 {
+        times
+            .iter()
+            .map(|&t| (self.at(t) - other.at(t)).norm())
+            .fold(0.0, f64::max)
     }
 
     /// The tip at time `t`: the cubic through the four nearest steps (its error, of order
