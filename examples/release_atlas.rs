@@ -4,12 +4,12 @@
 //! 85°, which measure how far an angle between two of the atlas's can stray from them.
 //! `scripts/release-atlas.sh` runs it (about 20 minutes on 2 cores) and writes
 //! `assets/release-atlas/atlas.csv`, which `--tolerance` reads at build time
-//! (`rope::methods::atlas`).
+//! (`rope::plan::atlas`).
 
 use rayon::prelude::*;
 use rope::methods::MethodKind;
-use rope::methods::atlas::{ATLAS_ANGLES, HELD_OUT_ANGLES, SEGMENTS, WINDOW};
 use rope::model::Scene;
+use rope::plan::atlas::{ATLAS_ANGLES, HELD_OUT_ANGLES, SEGMENTS, WINDOW};
 use rope::study::tolerance_check::{TipReference, measure};
 
 /// The reference's N: runs at N/2, N and 2N.

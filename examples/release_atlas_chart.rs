@@ -3,7 +3,7 @@
 //! `scripts/release-atlas.sh` after the atlas is measured.
 
 use anyhow::Context;
-use rope::methods::atlas::Atlas;
+use rope::plan::atlas::Atlas;
 use std::path::Path;
 
 fn main() -> anyhow::Result<()> {

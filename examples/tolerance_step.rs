@@ -5,8 +5,9 @@
 //! read from: a fraction whose worst error stays within 2.5 % of the default step's
 //! everywhere. `scripts/tolerance-step.sh` runs it (about 3 minutes on 2 cores).
 
-use rope::methods::{MethodKind, tolerance};
+use rope::methods::MethodKind;
 use rope::model::Scene;
+use rope::plan::tolerance;
 use rope::study::tolerance_check::{TipReference, measure};
 
 /// The worst distance of the tip from the reference's over the frames (NaN if the run could

@@ -14,9 +14,13 @@
 //!   its [`methods::Descriptor`];
 //! * [`run`]: the driver that takes a method to its final time and makes frames, and the
 //!   pipeline that hands them to a [`run::FrameSink`];
+//! * [`plan`]: what a run will be: `--tolerance`'s choice from the error models, the release
+//!   atlas and the pilot runs of the scene, and each scene's runs from the flags' request;
 //! * [`recording`]: the Rerun sink, the viewer's layout, and where a recording goes;
 //!   [`study`]: grids of runs, charted speed against accuracy;
-//! * [`cli`]: the command line, turning flags into validated runs and studies.
+//! * [`cli`]: the command line, turning flags into validated runs and studies;
+//! * [`service`]: `rope run` and `rope study` as calls: the outputs opened, the runs made,
+//!   what rope tells the user ([`service::notices`]), and how each ended.
 //!
 //! Units are dimensionless: length L = 1, gravity g = 1, mass per length 1, time in sqrt(L/g).
 //! Coordinates: x horizontal away from the support, **y pointing down**; φ is the angle of the
@@ -26,8 +30,10 @@ pub mod cli;
 pub mod error;
 pub mod methods;
 pub mod model;
+pub mod plan;
 pub mod recording;
 pub mod run;
+pub mod service;
 pub mod study;
 
 pub use error::{ConfigError, Diverged};

@@ -7,8 +7,8 @@ mod common;
 
 use common::cli::{Recording, Scratch, rope, summary};
 use rope::methods::MethodKind;
-use rope::methods::tolerance;
 use rope::model::Scene;
+use rope::plan::tolerance;
 use rope::run::{RunConfig, Verdict, pipeline};
 use rope::study::estimate_check::{self, Cell, FACTOR, Trajectory};
 use std::sync::atomic::AtomicBool;

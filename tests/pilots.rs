@@ -4,9 +4,10 @@
 mod common;
 
 use common::cli::{Scratch, rope, summary};
-use rope::methods::{MethodKind, tolerance};
+use rope::methods::MethodKind;
 use rope::model::{Point, Scene};
-use rope::run::pilot;
+use rope::plan::pilot;
+use rope::plan::tolerance;
 use rope::study::tolerance_check::TipReference;
 
 /// The largest distance, over a run's summary's tip samples, from the reference's tip.

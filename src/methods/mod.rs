@@ -9,8 +9,8 @@
 //!   energy kept exactly whatever the steps, which follow the motion;
 //! * [`registry`]: the methods a run can choose by name ([`MethodKind`]), each mapped to its
 //!   descriptor, and the report's own setting;
-//! * [`error_model`] and [`tolerance`]: how accurate a method is at N segments, and the rule
-//!   that picks the cheapest method for a tolerance;
+//! * [`error_model`]: how accurate a method is at N segments, the law C hᵖ each descriptor
+//!   carries (the planning layer, `crate::plan`, chooses runs with it);
 //! * [`tridiagonal`]: the bare Thomas solve the seed scheme's step is measured against.
 //!
 //! Adding a method: one file here that implements [`Method`] and defines its `DESCRIPTOR`,
@@ -18,7 +18,6 @@
 //! import what they use from the file that defines it, never through this one, so that no
 //! two of them import each other.
 
-pub mod atlas;
 pub mod chain;
 pub(crate) mod constraint_matrix;
 pub mod error_model;
@@ -28,7 +27,6 @@ pub mod midpoint;
 pub mod rattle;
 pub mod registry;
 pub mod seed;
-pub mod tolerance;
 pub mod tridiagonal;
 
 pub use method::{

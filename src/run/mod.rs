@@ -1,7 +1,7 @@
 //! Running a scene: what a run is asked to do ([`config`]), the pure driver that takes a
 //! method to its final time and makes frames ([`simulate`]), when its numbers can no longer
 //! be trusted ([`trust`]), the live error estimate from a shadow at half the segments
-//! ([`estimate`]), what `--tolerance` chooses after pilot runs of the scene ([`pilot`]), the
+//! ([`estimate`]), the
 //! two-thread pipeline that hands the frames to a [`sink::FrameSink`] ([`pipeline`]), several
 //! methods side by side in lockstep ([`lanes`]), and what a run reports ([`summary`],
 //! [`progress`]). Nothing here knows where frames end up.
@@ -10,7 +10,6 @@ pub mod config;
 pub mod cost;
 pub mod estimate;
 pub mod lanes;
-pub mod pilot;
 pub mod pipeline;
 pub mod progress;
 pub mod simulate;

@@ -75,6 +75,14 @@ impl Progress {
     }
 
     /// The run has ended: the bar goes.
+    /// Runs `print` with the bar out of the way (a line printed above it).
+    pub fn suspend<R>(&self, print: impl FnOnce() -> R) -> R {
+        match self.plain {
+            true => print(),
+            false => self.bar.suspend(print),
+        }
+    }
+
     pub fn finish(&self) {
         self.bar.finish_and_clear();
     }

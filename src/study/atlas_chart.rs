@@ -4,7 +4,7 @@
 
 use super::charts::{Drawn, SANS, legend, render_chart};
 use crate::methods::MethodKind;
-use crate::methods::atlas::Atlas;
+use crate::plan::atlas::Atlas;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;

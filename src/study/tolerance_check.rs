@@ -7,9 +7,9 @@
 use super::estimate_check::Trajectory;
 use super::trajectory::frame_times;
 use crate::methods::MethodKind;
-use crate::methods::tolerance;
 use crate::model::{Point, Scene};
-use crate::run::pilot;
+use crate::plan::pilot;
+use crate::plan::tolerance;
 use crate::run::simulate::{self, Options};
 use rayon::prelude::*;
 use std::ops::ControlFlow;

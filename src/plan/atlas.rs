@@ -1,6 +1,6 @@
 //! The release atlas: the committed error model of a release, per release angle.
 //!
-//! A method's one error law ([`Descriptor::error_model`](super::Descriptor::error_model)) is
+//! A method's one error law ([`Descriptor::error_model`](crate::methods::Descriptor::error_model)) is
 //! the worst of six scenes up to large N: the horizontal release's whip, whose error constant
 //! stays near 0.45/N. From most other angles the rods' worst tip error to t = 3 is far from
 //! one law: its constant rises and falls with N by up to a factor of 2 (from 30° it falls from
@@ -18,7 +18,7 @@
 //! atlas serves only what it measured: the rods, a release, runs to t ≤ 3, N ≤ 566, and
 //! errors at least ten times its references' own; elsewhere the method's one law stands.
 
-use super::error_model::ErrorModel;
+use crate::methods::error_model::ErrorModel;
 use crate::model::Scene;
 use std::sync::OnceLock;
 

@@ -11,13 +11,13 @@
 //! known so far; the climb also stops where the next pilot would take the pilots' cost past
 //! that run's: a scene that needs few segments pays for little more than one cheap run twice.
 
-use super::cost::{self, Cost};
-use super::simulate::{self, Options};
+use super::tolerance::{self, Choice, Committed, Source};
 use crate::error::{ConfigError, Diverged};
 use crate::methods::MethodKind;
 use crate::methods::error_model::ErrorModel;
-use crate::methods::tolerance::{self, Choice};
 use crate::model::Scene;
+use crate::run::cost::{self, Cost};
+use crate::run::simulate::{self, Options};
 use std::time::Instant;
 
 /// The pilots' segment counts: three levels, so that the order is observed, not assumed.
@@ -191,6 +191,7 @@ fn climb(
     eps: f64,
     scene: &Scene,
     duration: f64,
+    models: &Committed,
     committed: Option<Choice>,
     seconds: impl Fn(&Choice) -> f64,
     fits: impl Fn(MethodKind, usize, f64) -> bool + Copy,
@@ -249,7 +250,7 @@ fn climb(
                 Some(_) => None,
             };
             // Every model as it now stands: a method's older choice goes with its older model.
-            let modelled = cheapest_modelled(eps, scene, duration, &pilots, &seconds, fits);
+            let modelled = cheapest_modelled(eps, duration, models, &pilots, &seconds, fits);
             // Past the committed models' window, what the pilots measured rules.
             best = match (modelled, by_committed) {
                 (Some(m), Some(c)) if c.seconds < m.seconds && committed_covers(duration) => {
@@ -267,8 +268,8 @@ fn climb(
 /// [`tighter_model`]) and that `fits`.
 fn cheapest_modelled(
     eps: f64,
-    scene: &Scene,
     duration: f64,
+    models: &Committed,
     pilots: &[Pilot],
     seconds: impl Fn(&Choice) -> f64,
     fits: impl Fn(MethodKind, usize, f64) -> bool + Copy,
@@ -277,13 +278,12 @@ fn cheapest_modelled(
         .iter()
         .filter_map(|pilot| {
             let method = pilot.method;
-            let model = tighter_model(method, eps, scene, duration, pilots)?;
+            let model = tighter_model(method, eps, duration, models, pilots)?;
             let choice = tolerance::by_model(method, &model, eps, LEVELS[0], duration);
             if !fits(method, choice.segments, choice.dt) {
                 return None;
             }
-            let committed = tolerance::committed_model(method, scene, duration, eps);
-            let basis = match model == committed {
+            let basis = match model == models.model(method) {
                 true => Basis::CommittedTighter,
                 false => Basis::OwnModel,
             };
@@ -327,8 +327,8 @@ fn committed_covers(duration: f64) -> bool {
     duration <= tolerance::COMMITTED_UNTIL
 }
 
-/// Of `method`'s own model (from its pilots) and its committed one for `scene` to `duration`
-/// ([`tolerance::committed_model`]), the one that asks fewer segments for `eps`, the
+/// Of `method`'s own model (from its pilots) and its committed one (in `models`, for this
+/// scene, duration and tolerance: [`tolerance::committed_model`]), the one that asks fewer segments for `eps`, the
 /// committed one only where it covers the run's duration; `None` without an own model. Both
 /// bound measured errors: the own model the scene's at N ≤ 64, extrapolated; the committed one the release atlas's at this angle's neighbours, or the
 /// worst of six scenes, up to large N. Where a whip's error constant falls at large N, which
@@ -337,12 +337,12 @@ fn committed_covers(duration: f64) -> bool {
 pub fn tighter_model(
     method: MethodKind,
     eps: f64,
-    scene: &Scene,
     duration: f64,
+    models: &Committed,
     pilots: &[Pilot],
 ) -> Option<ErrorModel> {
     let own = pilots.iter().find(|p| p.method == method)?.model?;
-    let committed = tolerance::committed_model(method, scene, duration, eps);
+    let committed = models.model(method);
     Some(
         if committed_covers(duration) && committed.segments_for(eps) < own.segments_for(eps) {
             committed
@@ -381,13 +381,15 @@ pub fn choose(
         let cost = cost_of(method, segments, dt);
         cost.bytes <= memory && cost.seconds <= tolerance::MAX_SECONDS
     };
-    let committed = tolerance::choose(eps, duration, scene, fits);
+    // The committed models, looked up once: the choice and the pilots' climb read them.
+    let models = Committed::look_up(scene, duration, eps);
+    let committed = tolerance::choose_committed(eps, duration, scene, &models, fits);
     let seconds = |c: &Choice| cost_of(c.method, c.segments, c.dt).seconds;
-    let (flown, best) = climb(eps, scene, duration, committed, seconds, fits);
+    let (flown, best) = climb(eps, scene, duration, &models, committed, seconds, fits);
     if let Some(best) = best {
-        let from_atlas = tolerance::from_atlas(best.choice.method, scene, duration, eps);
+        let from_atlas = models.source(best.choice.method) == Source::Atlas;
         let basis = match best.basis {
-            Basis::Committed | Basis::CommittedTighter if from_atlas.is_some() => Basis::Atlas,
+            Basis::Committed | Basis::CommittedTighter if from_atlas => Basis::Atlas,
             basis => basis,
         };
         return Ok((best.choice, Pilots { flown, basis }));

@@ -2,11 +2,11 @@
 //! cheapest method, N and k whose tip error is predicted to stay within EPS, from each
 //! method's committed error model ([`committed_model`]: the release atlas where it serves,
 //! else the one law with its measured safety factor in its
-//! [`Descriptor`](super::Descriptor)) and its cost.
+//! [`Descriptor`](crate::methods::Descriptor)) and its cost.
 
 use super::atlas::Atlas;
-use super::error_model::ErrorModel;
-use super::registry::MethodKind;
+use crate::methods::MethodKind;
+use crate::methods::error_model::ErrorModel;
 use crate::model::Scene;
 
 /// Fewest segments the rule chooses: fewer is a pendulum, not a rope.
@@ -32,15 +32,78 @@ pub struct Choice {
 /// among the methods that can start from `scene` and whose run `fits` (the caller's limits on
 /// time and memory, asked as `fits(method, N, k)`). Each method's N comes from its error
 /// model's bound (prediction × measured safety factor), its k is the method's tolerance step
-/// for that N ([`Descriptor::tolerance_dt`](super::Descriptor::tolerance_dt)).
+/// for that N ([`Descriptor::tolerance_dt`](crate::methods::Descriptor::tolerance_dt)).
 pub fn choose(
     tolerance: f64,
     duration: f64,
     scene: &Scene,
     fits: impl Fn(MethodKind, usize, f64) -> bool,
 ) -> Option<Choice> {
-    let committed = |m: MethodKind| Some(committed_model(m, scene, duration, tolerance));
-    choose_with(tolerance, duration, scene, committed, MIN_SEGMENTS, fits)
+    let committed = Committed::look_up(scene, duration, tolerance);
+    choose_committed(tolerance, duration, scene, &committed, fits)
+}
+
+/// As [`choose`], with the committed models already looked up for this scene, duration and
+/// tolerance.
+pub fn choose_committed(
+    tolerance: f64,
+    duration: f64,
+    scene: &Scene,
+    committed: &Committed,
+    fits: impl Fn(MethodKind, usize, f64) -> bool,
+) -> Option<Choice> {
+    let model_of = |m: MethodKind| Some(committed.model(m));
+    choose_with(tolerance, duration, scene, model_of, MIN_SEGMENTS, fits)
+}
+
+/// Where a method's committed error model comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Source {
+    /// The release atlas, measured from this angle's neighbours ([`from_atlas`]).
+    Atlas,
+    /// The method's one law, fitted to the worst of six scenes (its descriptor's).
+    Law,
+}
+
+/// Every method's committed error model for one scene, duration and tolerance, and where it
+/// comes from: looked up once, before the choice, which then reads it.
+#[derive(Clone, Debug)]
+pub struct Committed {
+    models: Vec<(MethodKind, ErrorModel, Source)>,
+}
+
+impl Committed {
+    /// Each method's committed model from `scene` to `duration` for `tolerance`
+    /// ([`committed_model`]).
+    pub fn look_up(scene: &Scene, duration: f64, tolerance: f64) -> Self {
+        let models = MethodKind::ALL
+            .into_iter()
+            .map(
+                |method| match from_atlas(method, scene, duration, tolerance) {
+                    Some(model) => (method, model, Source::Atlas),
+                    None => (method, method.descriptor().error_model, Source::Law),
+                },
+            )
+            .collect();
+        Self { models }
+    }
+
+    /// `method`'s committed model.
+    pub fn model(&self, method: MethodKind) -> ErrorModel {
+        self.entry(method).0
+    }
+
+    /// Where `method`'s committed model comes from.
+    pub fn source(&self, method: MethodKind) -> Source {
+        self.entry(method).1
+    }
+
+    fn entry(&self, method: MethodKind) -> (ErrorModel, Source) {
+        self.models.iter().find(|(m, ..)| *m == method).map_or(
+            (method.descriptor().error_model, Source::Law),
+            |&(_, model, source)| (model, source),
+        )
+    }
 }
 
 /// The longest run the committed error models were measured over: the release atlas's

@@ -1,0 +1,301 @@
+//! `rope run` as a service: it opens the outputs, watches the viewer, runs the passes (the
+//! scenes in turn, again with `--loop`, methods side by side), writes the summary, serves a
+//! finished run until stopped, and returns how the last run ended. What it says goes to the
+//! [`Listener`] of its [`Session`] as notices.
+
+use super::notices::{self, Listener};
+use super::{ServiceError, Session};
+use crate::cli::{RunArgs, check_writable_file};
+use crate::methods::MethodKind;
+use crate::plan::Planned;
+use crate::recording::blueprint;
+use crate::recording::budget::Budget;
+use crate::recording::destinations::{Layouts, Output, Recording};
+use crate::recording::error::OutputError;
+use crate::recording::logger::RopeLogger;
+use crate::recording::viewer_sinks::ViewerLink;
+use crate::run::progress::Progress;
+use crate::run::{Status, Summary};
+use anyhow::Context as _;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
+
+/// How the last run ended.
+#[derive(Debug)]
+pub struct Outcome {
+    /// The last run's summary (side by side: the first method's, each one's under `methods`).
+    pub summary: Summary,
+    /// The process's exit status for it ([`crate::run::Verdict::exit_status`]).
+    pub exit_status: u8,
+}
+
+/// `rope run`: the scenes in turn (and again, with `--loop`), into one recording.
+pub fn run(args: &RunArgs, session: &Session) -> Result<Outcome, ServiceError> {
+    let tell = |n| session.listener.tell(n);
+    let plans = args.plans()?;
+    let asked = notices::Asked {
+        tolerance: args.tolerance,
+        dt_given: args.dt.is_some(),
+        lasting_default: args.lasting_default().then(|| args.method()),
+    };
+    notices::announce(&asked, &plans).into_iter().for_each(tell);
+    if let Some(path) = args.summary.as_deref() {
+        check_writable_file("summary", path)?;
+    }
+    let stop = &session.stop;
+    let headline = shared_headline(&plans);
+    let lanes = plans.first().map(Planned::lanes).unwrap_or_default();
+    let rates = args.output.history_rates();
+    let layouts = Layouts {
+        everything: blueprint::blueprint(headline.as_deref(), &lanes),
+        live: blueprint::live(headline.as_deref(), &lanes, rates.shape_interval()),
+    };
+    let output = match args.output.open("rope", layouts, args.endless()) {
+        Ok(output) => output,
+        Err(err @ OutputError::Save { .. }) => return Err(ServiceError::bad_input(err)),
+        Err(err) => return Err(err).context("opening the Rerun recording")?,
+    };
+    if let (Some(url), Some(live)) = (&output.serving, &output.serving_live) {
+        let limit = args.output.server_memory_limit.to_string();
+        tell(notices::serving(url, live, &limit));
+    }
+    if let Some(page) = &output.web_page {
+        tell(notices::web_page(page));
+    }
+    let live = output
+        .recordings
+        .iter()
+        .any(|r| matches!(r, Recording::Live { .. }));
+    let mut loggers = Vec::new();
+    for recording in &output.recordings {
+        loggers.push(
+            match recording {
+                Recording::Everything(rec) if live => RopeLogger::file_beside_viewers(rec.clone()),
+                Recording::Everything(rec) => RopeLogger::new(rec.clone()),
+                Recording::Live { history, live } => {
+                    RopeLogger::live(history.clone(), live.clone(), rates)
+                }
+            }
+            .context("logging the recording's styling")?,
+        );
+    }
+    if live {
+        let text = Budget::measure(&lanes, rates).text();
+        tell(notices::viewer_budget(
+            rates.series_per_unit,
+            rates.shape_interval(),
+            &text,
+        ));
+        for logger in &mut loggers {
+            logger.note_in_parameters(format!("**For viewers:** {text}."));
+        }
+    }
+    if let Some(link) = output.viewer.clone() {
+        watch_viewer(
+            link,
+            output.survives_viewer_loss,
+            Arc::clone(stop),
+            Arc::clone(&session.listener),
+        );
+    }
+    let (mut summary, strayed) = run_passes(args, &plans, &mut loggers, session)?;
+    if let Some(reason) = lost_viewer(&output) {
+        summary.recording_error = Some(format!(
+            "{reason} (the run reached t = {:.3})",
+            summary.steps as f64 * summary.dt
+        ));
+    }
+    if let Some(path) = &args.summary {
+        let json = serde_json::to_string_pretty(&summary).context("encoding the summary")?;
+        std::fs::write(path, json)
+            .with_context(|| format!("writing the summary to {}", path.display()))?;
+    }
+    if plans.len() == 1 && args.passes() == Some(1) {
+        tell(summary_notice(&summary));
+    }
+    if let Some(hint) = strayed.and_then(|(method, worst)| notices::energy_hint(method, worst)) {
+        tell(hint);
+    }
+    if let Some(dropped) = output
+        .live_dropped
+        .as_ref()
+        .map(|d| d.count())
+        .filter(|&n| n > 0)
+    {
+        tell(notices::live_dropped(dropped));
+    }
+    serve_until_stopped(&output, stop, &*session.listener);
+    drop(loggers); // closes the recordings: the file's footer, the last data to viewers
+    drop(output);
+    if let Some(err) = &summary.recording_error {
+        tell(notices::recording_incomplete(err));
+    }
+    let exit_status = summary.verdict().exit_status();
+    Ok(Outcome {
+        summary,
+        exit_status,
+    })
+}
+
+/// A run's summary, as the terminal prints it.
+fn summary_notice(summary: &Summary) -> notices::Notice {
+    notices::Notice::new(notices::Topic::Summary, summary.human())
+}
+
+/// The method whose energy strayed most, and by how much relative to |E_ref|, among the
+/// runs of methods that do not keep it.
+type Strayed = Option<(MethodKind, f64)>;
+
+/// The runs' method, scene, N and k in one line, when every run shares them (the rope
+/// view's title); `None` when they differ, or for methods side by side (the caption over
+/// the support names each run's).
+fn shared_headline(plans: &[Planned]) -> Option<String> {
+    if plans.iter().any(|p| !p.others.is_empty()) {
+        return None;
+    }
+    let headlines: Vec<String> = plans.iter().map(|p| p.plan.headline()).collect();
+    match headlines.as_slice() {
+        [first, rest @ ..] if rest.iter().all(|h| h == first) => Some(first.clone()),
+        _ => None,
+    }
+}
+
+/// Runs the plans in turn, `--loop` times over, until one does not end well or the session
+/// is stopped. Returns the last run's summary, and the method whose energy strayed most.
+fn run_passes(
+    args: &RunArgs,
+    plans: &[Planned],
+    logger: &mut Vec<RopeLogger>,
+    session: &Session,
+) -> anyhow::Result<(Summary, Strayed)> {
+    let stop: &AtomicBool = &session.stop;
+    let several = plans.len() > 1 || args.passes() != Some(1);
+    let mut last = None;
+    let mut strayed: Strayed = None;
+    let mut pass = 0;
+    'passes: while args.passes().is_none_or(|passes| pass < passes) {
+        pass += 1;
+        for planned in plans {
+            let plan = &planned.plan;
+            let progress = Progress::new(plan.duration);
+            let on_frame = |frame: &crate::run::Frame| {
+                progress.at(frame.time);
+                if frame.tolerance_exceeded {
+                    let notice = notices::tolerance_exceeded(plan, frame);
+                    // Above the progress bar, where the terminal draws one.
+                    progress.suspend(|| session.listener.tell(notice));
+                }
+            };
+            let summary = if planned.others.is_empty() {
+                crate::run::pipeline::run(plan, logger, stop, &on_frame)?
+            } else {
+                let lanes = crate::run::lanes::run(&planned.lanes(), logger, stop, &on_frame)?;
+                side_by_side(lanes)?
+            };
+            progress.finish();
+            let mut summary = summary;
+            if args.lasting_default() {
+                summary.method_chosen_because = Some(format!(
+                    "{}, the default for a run left running (endless, looping or served): {}",
+                    summary.method,
+                    MethodKind::DEFAULT_LASTING_BECAUSE
+                ));
+            }
+            if several {
+                // Each run of several says all it has as it ends; the last is not repeated.
+                session.listener.tell(summary_notice(&summary));
+            }
+            // Side by side, a method that diverged stops alone: the others, and the loop, go on.
+            let failed = match summary.methods.as_slice() {
+                [] => summary.status != Status::Ok,
+                lanes => lanes.iter().all(|l| l.status != Status::Ok),
+            };
+            let ended = failed || summary.recording_error.is_some();
+            let each = match summary.methods.as_slice() {
+                [] => std::slice::from_ref(&summary),
+                lanes => lanes,
+            };
+            for run in each {
+                let deviation = run.energy.max_rel_deviation;
+                if !run.method.descriptor().keeps_energy
+                    && strayed.is_none_or(|(_, worst)| deviation > worst)
+                {
+                    strayed = Some((run.method, deviation));
+                }
+            }
+            last = Some(summary);
+            if ended || stop.load(Ordering::SeqCst) {
+                break 'passes;
+            }
+        }
+    }
+    Ok((last.context("no run was made")?, strayed))
+}
+
+/// The summary of methods side by side: the first one's fields, and each one's under
+/// `methods` (its text says each one's lines, and how far each strayed).
+fn side_by_side(lanes: Vec<Summary>) -> anyhow::Result<Summary> {
+    let mut first = lanes.first().cloned().context("no method was run")?;
+    first.methods = lanes;
+    Ok(first)
+}
+
+/// Why the viewer that was the only destination is gone, if it is: that says more than a
+/// flush that failed for want of it (a lost link stays lost).
+fn lost_viewer(output: &Output) -> Option<String> {
+    match &output.viewer {
+        Some(link) if !output.survives_viewer_loss => link.lost(),
+        _ => None,
+    }
+}
+
+/// A served recording stays up for late viewers after a finite run, until stopped.
+fn serve_until_stopped(output: &Output, stop: &AtomicBool, listener: &dyn Listener) {
+    let Some(url) = &output.serving else { return };
+    if stop.load(Ordering::SeqCst) {
+        return;
+    }
+    listener.tell(notices::still_serving(url));
+    while !stop.load(Ordering::SeqCst) {
+        std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
+/// Watches the viewer from a thread of its own (a viewer already gone, as one that refused
+/// the connection, is reported at once, before the run). When it is gone: if a file or a
+/// served endpoint keeps the recording, says so once and lets the run go on; otherwise stops
+/// the run (the link keeps the reason, for the summary).
+fn watch_viewer(
+    link: ViewerLink,
+    survives: bool,
+    stop: Arc<AtomicBool>,
+    listener: Arc<dyn Listener>,
+) {
+    if viewer_gone(&link, survives, &stop, &*listener) {
+        return;
+    }
+    std::thread::spawn(move || {
+        while !viewer_gone(&link, survives, &stop, &*listener) {
+            std::thread::sleep(Duration::from_millis(100));
+        }
+    });
+}
+
+/// Whether the viewer is gone; if it is, acts on it (see [`watch_viewer`]).
+fn viewer_gone(
+    link: &ViewerLink,
+    survives: bool,
+    stop: &AtomicBool,
+    listener: &dyn Listener,
+) -> bool {
+    let Some(reason) = link.lost() else {
+        return false;
+    };
+    if survives {
+        listener.tell(notices::viewer_lost(&reason));
+    } else {
+        stop.store(true, Ordering::SeqCst);
+    }
+    true
+}

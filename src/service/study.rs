@@ -1,0 +1,335 @@
+//! `rope study` as a service: a grid of runs against a reference, or one of the studies
+//! beside it (`--long-run`, `--blow-up`, `--estimate-check`, `--tolerance-check`, `--merge`),
+//! its files written to `--out`. What it says goes to the [`Listener`] of its [`Session`]:
+//! the findings as a report, the rest as notices.
+
+use super::notices::{Listener, Notice, Topic};
+use super::{ServiceError, Session};
+use crate::cli::{CheckSize, StudyArgs, check_writable_file, writable_dir};
+use crate::methods::MethodKind;
+use crate::run::cost;
+use crate::run::progress::Counter;
+use anyhow::Context as _;
+
+/// A line of what the study does, or wrote.
+fn say(session: &Session, text: String) {
+    session.listener.tell(Notice::new(Topic::Study, text));
+}
+
+/// What the study wrote, and where.
+fn wrote(session: &Session, what: &str, out: &std::path::Path) {
+    say(
+        session,
+        format!("rope study: wrote {what} to {}", out.display()),
+    );
+}
+
+/// The study's findings, the report the terminal prints on stdout.
+fn report(listener: &dyn Listener, markdown: String) {
+    listener.tell(Notice::new(Topic::Report, markdown));
+}
+
+/// `rope study`: the grid, the reference, the findings and charts; optionally a recording.
+pub fn study(args: &StudyArgs, session: &Session) -> Result<(), ServiceError> {
+    if let Some(duration) = args.long_run {
+        return long_runs(session, args, duration);
+    }
+    if let Some(duration) = args.blow_up {
+        return blow_up(session, args, duration);
+    }
+    if args.estimate_check {
+        return estimate_check(session, args);
+    }
+    if let Some(size) = args.tolerance_check {
+        return tolerance_check(session, args, size);
+    }
+    if let Some(dirs) = &args.merge {
+        return merge(session, args, dirs);
+    }
+    let plan = args.plan()?;
+    writable_dir("out", &args.out)?;
+    if let Some(path) = args.save.as_deref() {
+        check_writable_file("save", path)?;
+    }
+    let spec = &plan.spec;
+    if plan.cost.seconds > cost::ANNOUNCE_SECONDS {
+        say(
+            session,
+            format!(
+                "rope study: predicted to take about {} of CPU ({} on {} threads) and {} of memory",
+                cost::seconds_text(plan.cost.seconds),
+                cost::seconds_text(plan.cost.seconds / rayon::current_num_threads() as f64),
+                rayon::current_num_threads(),
+                cost::bytes_text(plan.cost.bytes)
+            ),
+        );
+    }
+    let reference = match args
+        .reference
+        .as_deref()
+        .map(|p| crate::cli::reference_file(p, &plan))
+    {
+        Some(Ok(file)) => Some(file),
+        Some(Err(err)) => return Err(err.into()),
+        None => None,
+    };
+    if args.reference_only {
+        let path = crate::study::execute_reference_only(spec, plan.reference_segments, &args.out)?;
+        say(
+            session,
+            format!(
+                "rope study: wrote the reference to {}; give it to each shard with --reference",
+                path.display()
+            ),
+        );
+        return Ok(());
+    }
+    let cells = match args.shard {
+        Some(shard) => shard.cells(spec).len(),
+        None => spec.cells().len(),
+    } as u64;
+    say(
+        session,
+        format!(
+            "rope study: {cells} runs ({} methods × {} N × {} k{}) on {} threads, reference at N = {}{}",
+            spec.methods.len(),
+            spec.segments.len(),
+            spec.dts.len(),
+            args.shard.map_or(String::new(), |s| format!(", shard {s}")),
+            rayon::current_num_threads(),
+            plan.reference_segments,
+            if reference.is_some() { " (read)" } else { "" }
+        ),
+    );
+    for (asked, run) in spec.moved_dts() {
+        say(
+            session,
+            format!(
+                "rope study: k = {asked:e} runs at {run:.4e}, the largest step no larger that ends each run at t = {}",
+                spec.duration
+            ),
+        );
+    }
+    let counter = Counter::new(cells, "rope study", "runs");
+    let command = &session.command;
+    if let Some(shard) = args.shard {
+        crate::study::execute_shard(
+            spec,
+            shard,
+            reference,
+            plan.reference_segments,
+            &args.out,
+            || counter.inc(),
+        )?;
+        counter.finish();
+        say(
+            session,
+            format!(
+                "rope study: wrote shard {shard}'s study.csv and shard.json to {}; put the shards together with `rope study --merge DIR…`",
+                args.out.display()
+            ),
+        );
+        return Ok(());
+    }
+    let outcome = match reference {
+        Some(file) => {
+            crate::study::execute_with(spec, file.reference(), &args.out, command, || {
+                counter.inc()
+            })?
+        }
+        None => crate::study::execute(spec, plan.reference_segments, &args.out, command, || {
+            counter.inc()
+        })?,
+    };
+    counter.finish();
+    if let Some(path) = &args.save {
+        let rec = rerun::RecordingStreamBuilder::new("rope-study")
+            .save(path)
+            .with_context(|| format!("opening {}", path.display()))?;
+        crate::study::record::log(&rec, &outcome).context("logging the study")?;
+        rec.flush_blocking()
+            .context("writing the study recording")?;
+    }
+    report(&*session.listener, outcome.markdown.clone());
+    let findings = &outcome.findings;
+    for r in &findings.at_target {
+        if let Some(edge) = findings.edge(r) {
+            session.listener.tell(Notice::new(Topic::StudyWarning, format!(
+                "rope study: warning: {}'s cheapest run to a tip error of {:.0e} (N = {}, k = {:e}) is at the grid's edge, {}: a cheaper one may lie beyond it",
+                r.method,
+                crate::study::findings::TIP_TARGET,
+                r.segments,
+                r.dt,
+                edge
+            )));
+        }
+    }
+    wrote(session, "study.csv, findings.md and the charts", &args.out);
+    Ok(())
+}
+
+/// `rope study --long-run T`: each method from each release for T time units.
+fn long_runs(session: &Session, args: &StudyArgs, duration: f64) -> Result<(), ServiceError> {
+    let plan = args.long_run_plan(duration)?;
+    writable_dir("out", &args.out)?;
+    let runs = plan.runs.len() as u64;
+    say(
+        session,
+        format!(
+            "rope study: {runs} long runs of {duration} time units on {} threads, predicted {} of CPU",
+            rayon::current_num_threads(),
+            cost::seconds_text(plan.cost.seconds)
+        ),
+    );
+    let counter = Counter::new(
+        runs.saturating_mul(duration.ceil() as u64),
+        "rope study",
+        "time units",
+    );
+    let command = &session.command;
+    let markdown =
+        crate::study::execute_long_runs(&plan.runs, duration, &args.out, command, || {
+            counter.inc()
+        })?;
+    counter.finish();
+    report(&*session.listener, markdown);
+    wrote(
+        session,
+        "long_run.csv, long_run.md and the chart",
+        &args.out,
+    );
+    Ok(())
+}
+
+/// `rope study --merge DIR…`: the shards of a study put together.
+fn merge(
+    session: &Session,
+    args: &StudyArgs,
+    dirs: &[std::path::PathBuf],
+) -> Result<(), ServiceError> {
+    writable_dir("out", &args.out)?;
+    let command = &session.command;
+    let outcome = match crate::study::execute_merge(dirs, &args.out, command) {
+        Ok(outcome) => outcome,
+        Err(err) => match err.downcast_ref::<crate::study::shard::MergeError>() {
+            Some(merge) => return Err(ServiceError::bad_input(merge)),
+            None => return Err(err.into()),
+        },
+    };
+    report(&*session.listener, outcome.markdown.clone());
+    say(
+        session,
+        format!(
+            "rope study: merged {} shards ({} runs) into study.csv, findings.md and the charts in {}",
+            dirs.len(),
+            outcome.rows.len(),
+            args.out.display()
+        ),
+    );
+    Ok(())
+}
+
+/// `rope study --estimate-check`: the live error estimate against the truth.
+fn estimate_check(session: &Session, args: &StudyArgs) -> Result<(), ServiceError> {
+    writable_dir("out", &args.out)?;
+    let spec = crate::study::estimate_check::CheckSpec {
+        methods: args.methods.clone(),
+        ..Default::default()
+    };
+    let cells = spec.methods.len() * spec.scenes.len() * spec.segments.len();
+    say(
+        session,
+        format!(
+            "rope study: {} references at N = {} and {cells} runs with their shadows, to t = {}, on {} threads",
+            spec.scenes.len(),
+            spec.reference_segments,
+            spec.duration,
+            rayon::current_num_threads()
+        ),
+    );
+    let counter = Counter::new(
+        (spec.scenes.len() + cells) as u64,
+        "rope study",
+        "references and runs",
+    );
+    let command = &session.command;
+    let markdown =
+        crate::study::execute_estimate_check(&spec, &args.out, command, || counter.inc())?;
+    counter.finish();
+    report(&*session.listener, markdown);
+    wrote(
+        session,
+        "estimate_check.md, estimate_check.csv and estimate_check.png",
+        &args.out,
+    );
+    Ok(())
+}
+
+/// `rope study --tolerance-check`: what `--tolerance` chooses, against the truth and the
+/// cheapest run of a grid.
+fn tolerance_check(
+    session: &Session,
+    args: &StudyArgs,
+    size: CheckSize,
+) -> Result<(), ServiceError> {
+    use crate::study::tolerance_check::{CheckSpec, grid_steps};
+    writable_dir("out", &args.out)?;
+    let spec = match size {
+        CheckSize::Full => CheckSpec::default(),
+        CheckSize::Quick => CheckSpec::quick(),
+    };
+    let grid_runs: usize = spec
+        .grid
+        .iter()
+        .flat_map(|&n| MethodKind::ALL.map(|m| grid_steps(m, n).len()))
+        .sum();
+    let runs = spec.scenes.len() * (1 + grid_runs + spec.tolerances.len());
+    say(
+        session,
+        format!(
+            "rope study: {} scenes, each a reference at N = {} (with N/2 and 2N; N doubled up to {} until it is fine enough), a grid of up to {} runs and a choice per EPS in {:?}, to t = {}",
+            spec.scenes.len(),
+            spec.reference_segments,
+            spec.reference_segments_max,
+            grid_runs,
+            spec.tolerances,
+            spec.duration
+        ),
+    );
+    let counter = Counter::new(runs as u64, "rope study", "references, runs and choices");
+    let markdown =
+        crate::study::execute_tolerance_check(&spec, &args.out, &session.command, || {
+            counter.inc()
+        })?;
+    counter.finish();
+    report(&*session.listener, markdown);
+    wrote(
+        session,
+        "tolerance_check.md and tolerance_check.svg/.png",
+        &args.out,
+    );
+    Ok(())
+}
+
+/// `rope study --blow-up T`: when the report's scheme blows up, and what grows first.
+fn blow_up(session: &Session, args: &StudyArgs, duration: f64) -> Result<(), ServiceError> {
+    let scene = args.blow_up_plan(duration)?;
+    writable_dir("out", &args.out)?;
+    let runs =
+        (crate::study::blow_up::SEGMENTS.len() * crate::study::blow_up::FRACTIONS.len()) as u64;
+    say(
+        session,
+        format!(
+            "rope study: {runs} runs of the {} scheme from the {scene}, each to its blow-up or t = {duration}",
+            crate::methods::REPORT.method
+        ),
+    );
+    let counter = Counter::new(runs, "rope study", "runs");
+    let command = &session.command;
+    let markdown =
+        crate::study::execute_blow_up(&scene, duration, &args.out, command, || counter.inc())?;
+    counter.finish();
+    report(&*session.listener, markdown);
+    wrote(session, "blow_up.md, blow_up.csv and the charts", &args.out);
+    Ok(())
+}

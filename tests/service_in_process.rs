@@ -1,0 +1,169 @@
+//! `rope run` and `rope study` called in-process, as the binary calls them: what a run tells
+//! the user is read back as notices, not parsed from stderr, and a run is stopped, looped
+//! or refused with no process spawned.
+
+use clap::Parser as _;
+use rope::cli::{Cli, Command, RunArgs, StudyArgs};
+use rope::service::notices::{Collected, Topic};
+use rope::service::{ServiceError, Session, run, study};
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::sync::atomic::Ordering;
+use std::time::Duration;
+
+fn run_args(args: &[&str]) -> RunArgs {
+    let mut full = vec!["rope", "run"];
+    full.extend_from_slice(args);
+    match Cli::try_parse_from(&full).expect("the flags parse").command {
+        Command::Run(args) => args,
+        Command::Study(_) => unreachable!(),
+    }
+}
+
+fn study_args(args: &[&str]) -> StudyArgs {
+    let mut full = vec!["rope", "study"];
+    full.extend_from_slice(args);
+    match Cli::try_parse_from(&full).expect("the flags parse").command {
+        Command::Study(args) => args,
+        Command::Run(_) => unreachable!(),
+    }
+}
+
+fn listened() -> (Session, Arc<Collected>) {
+    let heard = Arc::new(Collected::default());
+    (Session::new(heard.clone(), "rope (a test)"), heard)
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("rope-in-process-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+fn a_seed_run_longer_than_its_blow_up_is_warned_before_it_starts() {
+    let dir = scratch("blow-up");
+    let file = dir.join("seed.rrd");
+    let args = run_args(&[
+        "--method",
+        "seed",
+        "--duration",
+        "80",
+        "--save",
+        file.to_str().unwrap(),
+    ]);
+    let (session, heard) = listened();
+    // Stopped at once: the warning comes before the run, which then ends interrupted.
+    session.stop.store(true, Ordering::SeqCst);
+    let outcome = run::run(&args, &session).expect("the run is made");
+    assert!(heard.told(Topic::BlowUp), "{:?}", heard.notices());
+    assert_eq!(outcome.exit_status, 130);
+    // A run that the seed lasts is not warned.
+    let short = run_args(&[
+        "--method",
+        "seed",
+        "--duration",
+        "5",
+        "--save",
+        file.to_str().unwrap(),
+    ]);
+    let (session, heard) = listened();
+    session.stop.store(true, Ordering::SeqCst);
+    run::run(&short, &session).expect("the run is made");
+    assert!(!heard.told(Topic::BlowUp), "{:?}", heard.notices());
+}
+
+#[test]
+fn a_run_stopped_midway_ends_interrupted_with_its_file_whole() {
+    let dir = scratch("stopped");
+    let file = dir.join("endless.rrd");
+    let args = run_args(&[
+        "--duration",
+        "inf",
+        "--method",
+        "chain",
+        "--save",
+        file.to_str().unwrap(),
+    ]);
+    let (session, heard) = listened();
+    let stop = Arc::clone(&session.stop);
+    let stopper = std::thread::spawn(move || {
+        std::thread::sleep(Duration::from_millis(500));
+        stop.store(true, Ordering::SeqCst);
+    });
+    let outcome = run::run(&args, &session).expect("the run is made");
+    stopper.join().unwrap();
+    assert_eq!(outcome.exit_status, 130);
+    assert!(outcome.summary.steps > 0, "{:?}", outcome.summary);
+    assert!(heard.told(Topic::Summary));
+    // The file holds the recording's footer: Rerun reads it back to its end.
+    let bytes = std::fs::read(&file).unwrap();
+    assert!(
+        bytes.len() > 1000 && bytes.starts_with(b"RRF2"),
+        "{} bytes",
+        bytes.len()
+    );
+}
+
+#[test]
+fn a_loop_of_two_passes_tells_a_summary_at_each_end() {
+    let dir = scratch("loop");
+    let file = dir.join("loop.rrd");
+    let args = run_args(&[
+        "--loop",
+        "2",
+        "--duration",
+        "0.5",
+        "--method",
+        "chain",
+        "--save",
+        file.to_str().unwrap(),
+    ]);
+    let (session, heard) = listened();
+    let outcome = run::run(&args, &session).expect("the run is made");
+    assert_eq!(outcome.exit_status, 0);
+    let summaries = heard
+        .notices()
+        .into_iter()
+        .filter(|n| n.topic == Topic::Summary)
+        .count();
+    assert_eq!(summaries, 2, "{:?}", heard.notices());
+}
+
+#[test]
+fn input_that_cannot_run_comes_back_as_bad_input_naming_the_flag() {
+    let (session, heard) = listened();
+    match run::run(&run_args(&["--dt", "-1"]), &session) {
+        Err(ServiceError::BadInput(text)) => assert!(text.contains("dt"), "{text}"),
+        other => panic!("{other:?}"),
+    }
+    // Refused before anything is announced or opened.
+    assert!(heard.notices().is_empty(), "{:?}", heard.notices());
+}
+
+#[test]
+fn a_study_none_of_whose_methods_can_start_is_refused_naming_the_flag() {
+    let dir = scratch("refused-study");
+    let args = study_args(&[
+        "--segments",
+        "16",
+        "--dts",
+        "1e-3",
+        "--methods",
+        "seed",
+        "--angle",
+        "0",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    let (session, _) = listened();
+    match study::study(&args, &session) {
+        Err(ServiceError::BadInput(text)) => {
+            assert!(
+                text.starts_with("methods:") && text.contains("cannot start"),
+                "{text}"
+            )
+        }
+        other => panic!("{other:?}"),
+    }
+}
