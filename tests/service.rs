@@ -431,5 +431,9 @@ fn a_default_page_lasts_a_week_three_methods_three_days_at_any_pace() {
     // The history goes by simulated time: a faster pace sends the same bytes per time unit.
     let fast = budget(&["--realtime", "30"]);
     assert_eq!(fast.bytes_per_unit, one.bytes_per_unit);
+    // And by frames of simulated time, whatever the step: a soak accelerated by a longer
+    // step sends what the default step sends.
+    let long_step = budget(&["--realtime", "200", "--dt", "1e-2"]);
+    assert_eq!(long_step.bytes_per_unit, one.bytes_per_unit);
     assert!((one.days() / fast.days() - 30.0).abs() < 1e-9);
 }

@@ -29,15 +29,13 @@ pub const WEB_VIEWER_CEILING: f64 = 2.3 * 1024.0 * 1024.0 * 1024.0;
 pub const PAGE_BASELINE: f64 = 760.0e6;
 
 /// How many bytes the web viewer's memory grows by per byte of Arrow data of history it is
-/// sent (the Arrow arrays' allocated size, which rounds each small buffer up): 1.8, the
-/// largest measured over a long soak of the default page. At 1.5 rows a time unit (2.0 kB
-/// sent per time unit) the page's WebAssembly memory grew 168.1 MB over 46 226 time units,
-/// 3.6 kB a time unit; it grows in steps of 33.6 MB, so 1.45 to 2.2
-/// (docs/measurements.md, "A page left open"). A soak at `--history-rate 50` (63.3 kB a
-/// time unit, mostly the rope's shapes) measured 1.1: small chunks of time series cost the
-/// viewer more per byte than large shapes. The default rate was lowered to keep a week
-/// within this figure.
-pub const VIEWER_PER_BYTE: f64 = 1.8;
+/// sent (the Arrow arrays' allocated size, which rounds each small buffer up). Two long soaks
+/// of the default page measured it (docs/measurements.md, "A page left open"): 1.8 at the
+/// former default of 1.5 rows a time unit (168.1 MB over 46 226 time units, 2.0 kB sent a
+/// time unit), and 0.77 at today's 0.75 (302.5 MB over 327 279 time units, 1.2 kB sent). The
+/// page grows in steps of 33.6 MB and its allocator keeps room, so neither is exact: 1.2,
+/// their geometric middle, predicts each within a factor of 1.6.
+pub const VIEWER_PER_BYTE: f64 = 1.2;
 
 /// Time units of history written to measure its bytes.
 pub const SAMPLE_UNITS: f64 = 4.0 * HISTORY_SEND_UNITS;
