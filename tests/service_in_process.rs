@@ -2,8 +2,12 @@
 //! the user is read back as notices, not parsed from stderr, and a run is stopped, looped
 //! or refused with no process spawned.
 
+mod common;
+
 use clap::Parser as _;
+use common::cli::Recording;
 use rope::cli::{Cli, Command, RunArgs, StudyArgs};
+use rope::recording::memory::InMemory;
 use rope::service::notices::{Collected, Topic};
 use rope::service::{ServiceError, Session, run, study};
 use std::path::PathBuf;
@@ -166,4 +170,24 @@ fn a_study_none_of_whose_methods_can_start_is_refused_naming_the_flag() {
         }
         other => panic!("{other:?}"),
     }
+}
+
+#[test]
+fn every_frame_of_a_run_reaches_a_destination_in_memory() {
+    let mut args = run_args(&["--method", "chain", "--segments", "20", "--duration", "2"]);
+    let memory = InMemory::default();
+    args.output.memory = Some(memory.clone());
+    let (session, _) = listened();
+    let outcome = run::run(&args, &session).expect("the run is made");
+    assert_eq!(outcome.exit_status, 0);
+    let mut recording = Recording::default();
+    for msg in memory.messages() {
+        recording.add(msg);
+    }
+    // 60 frames a time unit from t = 0 to 2, each the rope's segments once.
+    assert_eq!(outcome.summary.frames_logged, 121);
+    assert_eq!(
+        recording.temporal_rows("rope/segments") as u64,
+        outcome.summary.frames_logged
+    );
 }

@@ -8,6 +8,7 @@
 
 use super::error::OutputError;
 use super::live::HistoryRates;
+use super::memory::InMemory;
 use super::viewer_sinks::{LiveDropped, LiveSink, ServedSink, ViewerLink, ViewerSink};
 use rerun::RecordingStream;
 use rerun::blueprint::Blueprint;
@@ -87,6 +88,11 @@ pub struct OutputArgs {
     /// Write the recording to standard output, to pipe into a viewer (`| rerun -`).
     #[arg(long, short = 'o', conflicts_with_all = ["spawn", "connect", "serve_grpc", "web", "save"])]
     pub stdout: bool,
+
+    /// A destination in memory, for a caller in the same process (a test): it gets the
+    /// recording of every frame, as a file would. Not a flag.
+    #[arg(skip)]
+    pub memory: Option<InMemory>,
 }
 
 /// What a run logs into: a recording that keeps every frame, or, for viewers of a run that
@@ -221,7 +227,7 @@ impl OutputArgs {
         blueprint: Blueprint,
     ) -> Result<Output, OutputError> {
         let mut sinks = self.file_sinks()?;
-        let survives_viewer_loss = self.save.is_some();
+        let survives_viewer_loss = self.save.is_some() || self.memory.is_some();
         let viewer = self.viewer(survives_viewer_loss, &mut sinks)?;
         let mut builder =
             rerun::RecordingStreamBuilder::new(application_id).with_blueprint(blueprint);
@@ -301,6 +307,9 @@ impl OutputArgs {
             })?;
             sinks.push(Box::new(sink));
         }
+        if let Some(memory) = &self.memory {
+            sinks.push(Box::new(memory.sink()));
+        }
         Ok(sinks)
     }
 
@@ -332,7 +341,11 @@ impl OutputArgs {
     }
 
     fn nothing_named(&self) -> bool {
-        !self.stdout && self.save.is_none() && self.connect.is_none() && self.served_at().is_none()
+        !self.stdout
+            && self.save.is_none()
+            && self.memory.is_none()
+            && self.connect.is_none()
+            && self.served_at().is_none()
     }
 
     /// Hosts a gRPC endpoint that keeps `memory_limit` of history for late viewers, after

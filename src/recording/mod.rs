@@ -7,7 +7,8 @@
 //! * [`live`]: what viewers of a run that never ends are sent: a live picture and a history;
 //! * [`blueprint`]: the viewer's layout, one function per view; [`colour`]: the tension map;
 //! * [`destinations`]: the flags that name where the recording goes, and opening them;
-//! * [`viewer_sinks`]: links to viewers that can never stall a run;
+//! * [`viewer_sinks`]: links to viewers that can never stall a run; [`memory`]: a destination
+//!   in memory, for a caller in the same process;
 //! * [`error`]: what can go wrong here.
 
 pub mod blueprint;
@@ -18,4 +19,5 @@ pub mod entities;
 pub mod error;
 pub mod live;
 pub mod logger;
+pub mod memory;
 pub mod viewer_sinks;
