@@ -2,130 +2,25 @@
 //! profile, energy and tip time series, and the run's parameters. Knows nothing of the
 //! equations: it draws what a [`Frame`] holds.
 
-use super::colour::{SCALE_MAX, SHADE, hue_shade, shaded_strips, tension_colour};
-use super::entities::{HISTORY_LEAVES_OUT, SIM_TIME, STEP, path};
-use super::entities::{SERIES, SIDE_BY_SIDE, log10_abs};
+use super::entities::{SERIES, log10_abs};
+use super::entities::{SIM_TIME, STEP, path};
 use super::error::RecordingError;
+use super::lane_log::{LaneLog, style_of};
 use super::live::{HistoryRates, Keeping, LivePicture};
+use super::shapes::{
+    ROPE_RADIUS, SharedShapes, ThenShape, advance_trail, send_profiles, send_rope, send_tips,
+    send_trails, then_label, xy,
+};
+use super::styling;
 use crate::error::Diverged;
-use crate::model::Point;
 use crate::run::{Frame, FrameSink, RunPlan};
 use rerun::RecordingStream;
-use std::collections::VecDeque;
 use std::time::{Duration, Instant};
 
 /// How long the end of a run waits for the recording's destinations to take the last data.
 /// Longer than a viewer's own cap (`viewer_sinks::FLUSH_CAP`), so that a viewer that cannot
 /// take the data is reported by its link, with its own reason.
 const FLUSH_TIMEOUT: Duration = Duration::from_secs(5);
-
-/// Room for the time series of a batch of frames without reallocating.
-const BATCH_SERIES_CAPACITY: usize = 32;
-
-/// The time series of one frame, one value per [`SERIES`] entry.
-type SeriesRow = (f64, i64, [f64; SERIES.len()]);
-
-/// What the logger keeps for one method's frames: where its entities go, its trail, and its
-/// time series not yet sent. A run of one method has one, with the plain entity paths.
-struct LaneLog {
-    /// Where the method stands among several side by side; `None` in a run of one method.
-    index: Option<usize>,
-    /// The method's name side by side.
-    name: &'static str,
-    /// The method's colour side by side (its finest shade on the study's charts).
-    colour: rerun::Color,
-    /// What its entity paths end with: "" alone, "/{method}" side by side.
-    suffix: String,
-    trail: VecDeque<[f32; 2]>,
-    series: Vec<SeriesRow>,
-    /// Every how many frames a row of time series is kept: 1 alone; side by side, enough to
-    /// keep [`SIDE_BY_SIDE_SERIES_RATE`] rows per time unit (the plots redraw their whole
-    /// history every frame, and a browser on a small machine could not keep up with more);
-    /// for a history, its own rate, if that is lower.
-    series_stride: u64,
-    /// Whether only the series a history keeps are sent.
-    history: bool,
-    /// Frames of this lane seen so far.
-    frames_seen: u64,
-}
-
-/// Rows of time series per time unit each of several methods side by side sends at most.
-const SIDE_BY_SIDE_SERIES_RATE: f64 = 10.0;
-
-impl LaneLog {
-    /// The one lane of a run of one method (`plan` none before the first run).
-    fn alone(plan: Option<&RunPlan>, keeping: Keeping) -> Self {
-        let stride = match (keeping, plan) {
-            (Keeping::History(rates), Some(plan)) => rates.series_stride(plan.log_rate),
-            _ => 1,
-        };
-        Self::new(None, "", [0, 0, 0], stride, keeping)
-    }
-
-    /// The lane of the method at `index` among several side by side.
-    fn of(index: usize, plan: &RunPlan, keeping: Keeping) -> Self {
-        let mut stride = (plan.log_rate / SIDE_BY_SIDE_SERIES_RATE).ceil().max(1.0) as u64;
-        if let Keeping::History(rates) = keeping {
-            stride = stride.max(rates.series_stride(plan.log_rate));
-        }
-        Self::new(
-            Some(index),
-            plan.method.name(),
-            plan.method.descriptor().colours.1,
-            stride,
-            keeping,
-        )
-    }
-
-    fn new(
-        index: Option<usize>,
-        name: &'static str,
-        [r, g, b]: [u8; 3],
-        series_stride: u64,
-        keeping: Keeping,
-    ) -> Self {
-        Self {
-            index,
-            name,
-            colour: rerun::Color::from_rgb(r, g, b),
-            suffix: index.map_or(String::new(), |_| format!("/{name}")),
-            trail: VecDeque::with_capacity(TRAIL_FRAMES),
-            series: Vec::with_capacity(BATCH_SERIES_CAPACITY),
-            series_stride,
-            history: keeping != Keeping::Everything,
-            frames_seen: 0,
-        }
-    }
-
-    /// `entity`'s path for this lane.
-    fn at(&self, entity: &str) -> String {
-        format!("{entity}{}", self.suffix)
-    }
-
-    /// Whether this lane sends the time series of `entity`.
-    fn sends(&self, entity: &str) -> bool {
-        match self.index {
-            None => !(self.history && HISTORY_LEAVES_OUT.contains(&entity)),
-            Some(_) => SIDE_BY_SIDE.contains(&entity),
-        }
-    }
-
-    /// Whether `frame` is of this lane.
-    fn owns(&self, frame: &Frame) -> bool {
-        frame.lane.map(|l| l.index) == self.index
-    }
-}
-
-/// The colour and name of the method `frame` is of, among `lanes` (dark grey and no name
-/// if none owns it).
-fn style_of(lanes: &[LaneLog], frame: &Frame) -> (rerun::Color, &'static str) {
-    lanes
-        .iter()
-        .find(|l| l.owns(frame))
-        .map_or((rerun::Color::from_rgb(20, 20, 20), ""), |l| {
-            (l.colour, l.name)
-        })
-}
 
 /// A paced run sends each frame's shapes at once, but gathers the time series of up to this
 /// many frames (or [`SERIES_WAIT`]) into one chunk per series: each chunk carries its own
@@ -139,11 +34,6 @@ const SERIES_WAIT: Duration = Duration::from_millis(100);
 /// refresh once a second.
 const SIDE_BY_SIDE_SERIES_FRAMES: usize = 25;
 const SIDE_BY_SIDE_SERIES_WAIT: Duration = Duration::from_secs(1);
-
-/// How many frames of the tip's path the trail keeps.
-const TRAIL_FRAMES: usize = 45;
-/// Line radius of the rope, in string lengths.
-const ROPE_RADIUS: f32 = 0.006;
 
 /// The time columns of rows at `sim_time` seconds and `step` steps, both timelines.
 fn timelines(
@@ -221,43 +111,8 @@ impl RopeLogger {
             Keeping::History(rates),
             Some(LivePicture::new(live)),
         )?;
-        Self::log_then_styling(&logger.rec)?;
+        styling::log_then_styling(&logger.rec)?;
         Ok(logger)
-    }
-
-    /// The "then" rope's styling: thinner and paler than the live one, its tip labelled
-    /// with its time.
-    fn log_then_styling(rec: &RecordingStream) -> rerun::RecordingStreamResult<()> {
-        rec.log_static(
-            path::THEN_SUPPORT,
-            &rerun::Points2D::new([[0.0f32, 0.0]])
-                .with_radii([0.02])
-                .with_colors([rerun::Color::from_rgb(90, 90, 90)]),
-        )?;
-        rec.log_static(
-            path::THEN_SEGMENTS,
-            &rerun::LineStrips2D::update_fields().with_radii([ROPE_RADIUS]),
-        )?;
-        rec.log_static(
-            path::THEN_TIP,
-            &rerun::Points2D::update_fields()
-                .with_radii([0.015])
-                .with_colors([rerun::Color::from_rgb(20, 20, 20)])
-                .with_show_labels(true),
-        )?;
-        rec.log_static(
-            path::THEN_TIPS,
-            &rerun::Points2D::update_fields()
-                .with_radii([0.018])
-                .with_show_labels(true),
-        )?;
-        // Spans the swing, as the live view's colour bar does, so the two views match.
-        rec.log_static(
-            path::THEN_FRAME,
-            &rerun::LineStrips2D::new([[[-1.0f32, 1.12], [1.0, 1.12]]])
-                .with_radii([0.002])
-                .with_colors([rerun::Color::from_unmultiplied_rgba(160, 160, 160, 140)]),
-        )
     }
 
     fn keeping(
@@ -280,8 +135,8 @@ impl RopeLogger {
                 .with_colors([rerun::Color::from_rgb(140, 140, 140)])
                 .with_show_labels(true),
         )?;
-        Self::log_scale(&rec, false)?;
-        Self::log_profile_axes(&rec)?;
+        styling::log_scale(&rec, false)?;
+        styling::log_profile_axes(&rec)?;
         // Styling that never changes is logged once; frames carry only what moves.
         rec.log_static(
             path::SEGMENTS,
@@ -353,74 +208,6 @@ impl RopeLogger {
             gather: 0,
             pending: Vec::new(),
         })
-    }
-
-    /// A static colour bar below the swing, F from 0 to [`SCALE_MAX`], labelled at its ends:
-    /// the report's map, or side by side (`hued`) a grey ramp of the shades each method's
-    /// hue takes. Spanning the swing's width, it also keeps the view's extent steady.
-    fn log_scale(rec: &RecordingStream, hued: bool) -> rerun::RecordingStreamResult<()> {
-        let pieces = 25;
-        let (x0, width, y) = (-1.0f32, 2.0f32, 1.12f32);
-        let strips = (0..pieces).map(|i| {
-            let a = x0 + width * i as f32 / pieces as f32;
-            let b = x0 + width * (i + 1) as f32 / pieces as f32;
-            [[a, y], [b, y]]
-        });
-        let colors = (0..pieces).map(|i| {
-            let f = SCALE_MAX * (i as f64 + 0.5) / pieces as f64;
-            if hued {
-                hue_shade([200, 200, 200], f)
-            } else {
-                tension_colour(f)
-            }
-        });
-        let mut labels = vec![String::new(); pieces];
-        labels[pieces / 2] = if hued {
-            format!(
-                "tension: dark F = 0 … light F ≥ {SCALE_MAX} m g, each rope in its method's colour"
-            )
-        } else {
-            format!("tension: red F = 0 … yellow F ≥ {SCALE_MAX} m g")
-        };
-        rec.log_static(
-            path::SCALE,
-            &rerun::LineStrips2D::new(strips)
-                .with_colors(colors)
-                .with_radii([0.02])
-                .with_labels(labels),
-        )
-    }
-
-    /// Static axes for the tension profile: s from the support (0) to the tip (1) along the
-    /// bottom, F drawn upward with guide lines at F = 0.5, 1, 1.5 and 2.
-    fn log_profile_axes(rec: &RecordingStream) -> rerun::RecordingStreamResult<()> {
-        let grey = rerun::Color::from_unmultiplied_rgba(160, 160, 160, 140);
-        let mut strips = vec![[[0.0f32, 0.0], [1.0, 0.0]], [[0.0, 0.0], [0.0, -2.0]]];
-        let mut labels = vec![String::new(), String::new()];
-        for f in [0.5f32, 1.0, 1.5, 2.0] {
-            strips.push([[0.0, -f], [1.0, -f]]);
-            labels.push(format!("F = {f}"));
-        }
-        rec.log_static(
-            path::PROFILE_AXES,
-            &rerun::LineStrips2D::new(strips)
-                .with_radii([0.002])
-                .with_colors([grey])
-                .with_labels(labels),
-        )?;
-        // The s axis's ticks (y points down); the view's title names the axis.
-        let ticks = [0.0f32, 0.25, 0.5, 0.75, 1.0];
-        // Just above the axis: the view fits its data, and a label below it would be cut.
-        let points: Vec<[f32; 2]> = ticks.iter().map(|&s| [s, -0.08]).collect();
-        let names: Vec<String> = ticks.iter().map(|s| format!("s = {s}")).collect();
-        rec.log_static(
-            path::PROFILE_TICKS,
-            &rerun::Points2D::new(points)
-                .with_radii([0.006])
-                .with_colors([grey])
-                .with_labels(names)
-                .with_show_labels(true),
-        )
     }
 
     /// The `sim_time` and `step` columns of `frames`, placed after the runs before.
@@ -833,222 +620,6 @@ pub const FILE_GATHER: usize = 120;
 /// Time units before a history first sends what it gathered (then 4, 8, 16, 20, …).
 pub const FIRST_SEND_UNITS: f64 = 2.0;
 
-/// A shape of the rope (of each method side by side) the history keeps, not yet sent.
-struct ThenShape {
-    time: f64,
-    step: i64,
-    frames: Vec<Frame>,
-}
-
-/// The "then" tip's label: the time the shape is of.
-fn then_label(time: f64) -> String {
-    format!("then: t = {time:.1}")
-}
-
-/// Moves a trail on by `tips`; returns the trail as it stood at each of them when `each`.
-fn advance_trail(
-    trail: &mut VecDeque<[f32; 2]>,
-    tips: &[[f32; 2]],
-    each: bool,
-) -> Vec<Vec<[f32; 2]>> {
-    let mut trails = Vec::new();
-    for &tip in tips {
-        if trail.len() == TRAIL_FRAMES {
-            trail.pop_front();
-        }
-        trail.push_back(tip);
-        if each {
-            trails.push(trail.iter().copied().collect());
-        }
-    }
-    trails
-}
-
-/// The rope of each frame: one 2-point strip per segment, coloured by its tension, at
-/// `times` (none: static, one frame).
-fn send_rope(
-    rec: &RecordingStream,
-    entity: &str,
-    frames: &[&Frame],
-    times: Vec<rerun::TimeColumn>,
-) -> rerun::RecordingStreamResult<()> {
-    let mut strips = Vec::new();
-    let mut colours = Vec::new();
-    let mut lengths = Vec::with_capacity(frames.len());
-    for f in frames {
-        lengths.push(f.tension.len());
-        strips.extend(f.nodes.windows(2).map(|w| [xy(&w[0]), xy(&w[1])]));
-        colours.extend(f.tension.iter().map(|&t| tension_colour(t)));
-    }
-    rec.send_columns(
-        entity,
-        times,
-        rerun::LineStrips2D::update_fields()
-            .with_strips(strips)
-            .with_colors(colours)
-            .columns(lengths)?,
-    )
-}
-
-/// A tip per row, at `times` (none: static, one row).
-fn send_tips(
-    rec: &RecordingStream,
-    entity: &str,
-    tips: Vec<[f32; 2]>,
-    times: Vec<rerun::TimeColumn>,
-) -> rerun::RecordingStreamResult<()> {
-    rec.send_columns(
-        entity,
-        times,
-        rerun::Points2D::update_fields()
-            .with_positions(tips)
-            .columns_of_unit_batches()?,
-    )
-}
-
-/// A trail per row, at `times` (none: static, one row).
-fn send_trails(
-    rec: &RecordingStream,
-    entity: &str,
-    trails: Vec<Vec<[f32; 2]>>,
-    times: Vec<rerun::TimeColumn>,
-) -> rerun::RecordingStreamResult<()> {
-    rec.send_columns(
-        entity,
-        times,
-        rerun::LineStrips2D::update_fields()
-            .with_strips(trails)
-            .columns_of_unit_batches()?,
-    )
-}
-
-/// F(s) of each frame drawn upward, at `times` (none: static, one frame).
-fn send_profiles(
-    rec: &RecordingStream,
-    entity: &str,
-    frames: &[&Frame],
-    times: Vec<rerun::TimeColumn>,
-) -> rerun::RecordingStreamResult<()> {
-    let profiles: Vec<Vec<[f32; 2]>> = frames.iter().map(|f| profile(f)).collect();
-    rec.send_columns(
-        entity,
-        times,
-        rerun::LineStrips2D::update_fields()
-            .with_strips(profiles)
-            .columns_of_unit_batches()?,
-    )
-}
-
-/// The ropes (in [`SHADE`]s of tension), tips and tension profiles of instants of several
-/// methods, as rows of three entities: an instant a row.
-struct SharedShapes {
-    ropes: Vec<Vec<[f32; 2]>>,
-    rope_colours: Vec<rerun::Color>,
-    rope_lengths: Vec<usize>,
-    tips: Vec<[f32; 2]>,
-    tip_colours: Vec<rerun::Color>,
-    profiles: Vec<Vec<[f32; 2]>>,
-    per_instant: Vec<usize>,
-}
-
-impl SharedShapes {
-    /// The shapes of `instants`, each frame's colour from `lane_of`; `hued`: each rope in
-    /// its method's hue, tension its shade (side by side), else in the report's tension map.
-    fn of(
-        instants: &[Vec<&Frame>],
-        lane_of: impl Fn(&Frame) -> (rerun::Color, &'static str),
-        hued: bool,
-    ) -> Self {
-        let mut shapes = Self {
-            ropes: Vec::new(),
-            rope_colours: Vec::new(),
-            rope_lengths: Vec::with_capacity(instants.len()),
-            tips: Vec::new(),
-            tip_colours: Vec::new(),
-            profiles: Vec::new(),
-            per_instant: Vec::with_capacity(instants.len()),
-        };
-        for instant in instants {
-            let before = shapes.ropes.len();
-            for f in instant {
-                let nodes: Vec<[f32; 2]> = f.nodes.iter().map(xy).collect();
-                let (colour, _) = lane_of(f);
-                let [r, g, b, _] = colour.to_array();
-                let (strips, colours) = if hued {
-                    shaded_strips(&nodes, &f.tension, SHADE, |t| hue_shade([r, g, b], t))
-                } else {
-                    shaded_strips(&nodes, &f.tension, SHADE, tension_colour)
-                };
-                shapes.ropes.extend(strips);
-                shapes.rope_colours.extend(colours);
-                shapes.tips.push(xy(&f.tip()));
-                shapes.tip_colours.push(colour);
-                shapes.profiles.push(profile(f));
-            }
-            shapes.rope_lengths.push(shapes.ropes.len() - before);
-            shapes.per_instant.push(instant.len());
-        }
-        shapes
-    }
-
-    /// Sends the ropes, tips and (unless its path is empty) profiles at `times` (none:
-    /// static, one instant).
-    fn send(
-        self,
-        rec: &RecordingStream,
-        [segments, tips, profiles]: [&str; 3],
-        times: Vec<rerun::TimeColumn>,
-    ) -> rerun::RecordingStreamResult<()> {
-        rec.send_columns(
-            segments,
-            times.clone(),
-            rerun::LineStrips2D::update_fields()
-                .with_strips(self.ropes)
-                .with_colors(self.rope_colours)
-                .columns(self.rope_lengths)?,
-        )?;
-        rec.send_columns(
-            tips,
-            times.clone(),
-            rerun::Points2D::update_fields()
-                .with_positions(self.tips)
-                .with_colors(self.tip_colours.iter().copied())
-                .columns(self.per_instant.iter().copied())?,
-        )?;
-        if profiles.is_empty() {
-            return Ok(());
-        }
-        rec.send_columns(
-            profiles,
-            times,
-            rerun::LineStrips2D::update_fields()
-                .with_strips(self.profiles)
-                .with_colors(self.tip_colours)
-                .columns(self.per_instant)?,
-        )
-    }
-}
-
-/// F(s) of a frame drawn upward, y = −F (the 2D view's y points down): first the tension at
-/// the support, s = 0, then each of the method's tensions where it sits (the rods' at each
-/// rod's middle, the seed's a segment below each node: `Frame::tension_first_at`).
-fn profile(f: &Frame) -> Vec<[f32; 2]> {
-    let n = f.tension.len() as f64;
-    std::iter::once([0.0, -(f.support_tension as f32)])
-        .chain(
-            f.tension
-                .iter()
-                .enumerate()
-                .map(|(i, &t)| [((i as f64 + f.tension_first_at) / n) as f32, -(t as f32)]),
-        )
-        .collect()
-}
-
-/// A point as the viewer takes it.
-fn xy(p: &Point) -> [f32; 2] {
-    [p.x as f32, p.y as f32]
-}
-
 /// A recording of runs, one after another on the timelines: each starts where the one
 /// before it ended (`--loop`), with its parameters logged there and a fresh trail.
 impl FrameSink for RopeLogger {
@@ -1081,7 +652,7 @@ impl FrameSink for RopeLogger {
             path::TIPS,
             &rerun::Points2D::update_fields().with_radii([0.018]),
         )?;
-        Self::log_scale(&self.rec, true)?;
+        styling::log_scale(&self.rec, true)?;
         self.rec.log_static(
             path::PROFILES,
             &rerun::LineStrips2D::update_fields().with_radii([0.008]),

@@ -1,7 +1,9 @@
 //! Recording: frames into a Rerun recording stream, and where that stream goes.
 //!
 //! * [`logger`]: [`RopeLogger`](logger::RopeLogger), the [`FrameSink`](crate::run::FrameSink)
-//!   that draws frames as Rerun entities (it knows nothing of the equations);
+//!   that draws frames as Rerun entities (it knows nothing of the equations); what it keeps
+//!   per method ([`lane_log`]), how each shape is drawn ([`shapes`]) and what is logged once
+//!   ([`styling`]);
 //! * [`entities`]: the entity paths, timelines and time series, by name;
 //! * [`budget`]: how long a page can stay open on a history, worked out before the run;
 //! * [`live`]: what viewers of a run that never ends are sent: a live picture and a history;
@@ -17,7 +19,10 @@ pub mod colour;
 pub mod destinations;
 pub mod entities;
 pub mod error;
+pub mod lane_log;
 pub mod live;
 pub mod logger;
 pub mod memory;
+pub mod shapes;
+pub mod styling;
 pub mod viewer_sinks;
