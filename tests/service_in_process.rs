@@ -191,3 +191,21 @@ fn every_frame_of_a_run_reaches_a_destination_in_memory() {
         outcome.summary.frames_logged
     );
 }
+
+#[test]
+fn a_tolerance_runs_summary_says_what_its_choice_rests_on() {
+    let mut args = run_args(&["--tolerance", "1e-2", "--duration", "1"]);
+    args.output.memory = Some(InMemory::default());
+    let (session, _) = listened();
+    let outcome = run::run(&args, &session).expect("the run is made");
+    let because = outcome
+        .summary
+        .method_chosen_because
+        .clone()
+        .expect("the choice is explained");
+    assert!(
+        because.contains("chosen by --tolerance 1e-2") && because.contains("rests on the "),
+        "{because}"
+    );
+    assert!(outcome.summary.human().contains(&because));
+}

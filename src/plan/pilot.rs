@@ -147,6 +147,24 @@ pub enum Basis {
 }
 
 impl Basis {
+    /// What the choice rests on, in a sentence's words (the run's announcement and its
+    /// summary say it).
+    pub fn meaning(self) -> &'static str {
+        match self {
+            Self::Held => "the scene's own error, measured by the pilot at this N",
+            Self::OwnModel => "the scene's own error model, from the pilots",
+            Self::CommittedTighter => {
+                "the committed error model, here tighter than the pilots' own (measured at N ≤ 64)"
+            }
+            Self::Atlas => {
+                "the release atlas: the rods' worst error to t = 3 measured up to N = 566 from this angle's neighbours among 0°, 10°, …, 90°, times the margin the angles between them showed (`scripts/release-atlas.sh`)"
+            }
+            Self::Committed => {
+                "the committed error model, fitted to t = 3 over six scenes by `rope study --estimate-check`, no cheaper run found by the pilots that were worth their cost"
+            }
+        }
+    }
+
     /// A few words for a table.
     pub fn label(self) -> &'static str {
         match self {

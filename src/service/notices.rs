@@ -159,19 +159,10 @@ pub fn announce(asked: &Asked, plans: &[Planned]) -> Vec<Notice> {
         } else {
             String::new()
         };
-        let basis = match pilots.as_ref().map(|p| p.basis) {
-            Some(Basis::Held) => "the scene's own error, measured by the pilot at this N",
-            Some(Basis::OwnModel) => "the scene's own error model, from the pilots",
-            Some(Basis::CommittedTighter) => {
-                "the committed error model, here tighter than the pilots' own (measured at N ≤ 64)"
-            }
-            Some(Basis::Atlas) => {
-                "the release atlas: the rods' worst error to t = 3 measured up to N = 566 from this angle's neighbours among 0°, 10°, …, 90°, times the margin the angles between them showed (`scripts/release-atlas.sh`)"
-            }
-            Some(Basis::Committed) | None => {
-                "the committed error model, fitted to t = 3 over six scenes by `rope study --estimate-check`, no cheaper run found by the pilots that were worth their cost"
-            }
-        };
+        let basis = pilots
+            .as_ref()
+            .map_or(Basis::Committed, |p| p.basis)
+            .meaning();
         let flew = |p: &&Pilots| p.flown.iter().any(|f| f.flew());
         if let Some(pilots) = pilots.as_ref().filter(flew) {
             notices.push(Notice::new(

@@ -8,6 +8,7 @@ use super::{ServiceError, Session};
 use crate::cli::{RunArgs, check_writable_file};
 use crate::methods::MethodKind;
 use crate::plan::Planned;
+use crate::plan::pilot::Basis;
 use crate::recording::blueprint;
 use crate::recording::budget::Budget;
 use crate::recording::destinations::{Layouts, Output, Recording};
@@ -195,6 +196,19 @@ fn run_passes(
             };
             progress.finish();
             let mut summary = summary;
+            if let (Some(choice), Some(eps)) = (&planned.choice, plan.tolerance) {
+                let basis = planned
+                    .pilots
+                    .as_ref()
+                    .map_or(Basis::Committed, |p| p.basis);
+                summary.method_chosen_because = Some(format!(
+                    "{}, chosen by --tolerance {eps:e} at N = {}: the predicted tip error {:.1e} rests on {}",
+                    choice.method,
+                    choice.segments,
+                    choice.predicted_error,
+                    basis.meaning()
+                ));
+            }
             if args.lasting_default() {
                 summary.method_chosen_because = Some(format!(
                     "{}, the default for a run left running (endless, looping or served): {}",
