@@ -65,17 +65,9 @@ impl Progress {
         }
     }
 
-    /// A line for the person waiting, above the bar (which is redrawn under it).
-    pub fn say(&self, line: &str) {
-        if self.plain {
-            eprintln!("{line}");
-        } else {
-            self.bar.suspend(|| eprintln!("{line}"));
-        }
-    }
-
     /// The run has ended: the bar goes.
-    /// Runs `print` with the bar out of the way (a line printed above it).
+    /// Runs `print` with the bar out of the way: a line for the person waiting goes above
+    /// the bar, which is redrawn under it.
     pub fn suspend<R>(&self, print: impl FnOnce() -> R) -> R {
         match self.plain {
             true => print(),
