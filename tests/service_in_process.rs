@@ -209,3 +209,24 @@ fn a_tolerance_runs_summary_says_what_its_choice_rests_on() {
     );
     assert!(outcome.summary.human().contains(&because));
 }
+
+/// What a short chain run saved to `file` tells.
+fn told_saving_to(file: &std::path::Path) -> Arc<Collected> {
+    let short = "--method chain --segments 8 --duration 0.2 --save";
+    let mut flags: Vec<&str> = short.split(' ').collect();
+    flags.push(file.to_str().unwrap());
+    let (session, heard) = listened();
+    run::run(&run_args(&flags), &session).expect("the run is made");
+    heard
+}
+
+#[test]
+fn a_file_not_named_rrd_is_warned_of_and_still_written() {
+    let dir = scratch("misnamed");
+    let file = dir.join("swing.bin");
+    let heard = told_saving_to(&file);
+    assert!(heard.told(Topic::FileName), "{:?}", heard.notices());
+    assert!(std::fs::read(&file).unwrap().starts_with(b"RRF2"));
+    let heard = told_saving_to(&dir.join("swing.rrd"));
+    assert!(!heard.told(Topic::FileName), "{:?}", heard.notices());
+}

@@ -140,6 +140,14 @@ impl OutputArgs {
         HistoryRates::at(self.history_rate)
     }
 
+    /// The `--save` file's name when it does not end in `.rrd` (it is a Rerun recording
+    /// whatever its name, but tools go by the name): the caller warns of it.
+    pub fn misnamed_file(&self) -> Option<&std::path::Path> {
+        self.save
+            .as_deref()
+            .filter(|path| path.extension().is_none_or(|e| e != "rrd"))
+    }
+
     /// Whether viewers get a live picture and a history rather than every frame: for a run
     /// that is served, or that never ends (`endless`) and has a viewer.
     pub fn live(&self, endless: bool) -> bool {
@@ -294,13 +302,6 @@ impl OutputArgs {
             sinks.push(Box::new(sink));
         }
         if let Some(path) = &self.save {
-            if path.extension().is_none_or(|e| e != "rrd") {
-                eprintln!(
-                    "rope: warning: --save {}: the file is a Rerun recording whatever its name; \
-                     name it with .rrd so that `rerun` and other tools recognise it",
-                    path.display()
-                );
-            }
             let sink = rerun::sink::FileSink::new(path).map_err(|err| OutputError::Save {
                 path: path.clone(),
                 reason: err.to_string(),

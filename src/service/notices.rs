@@ -32,6 +32,8 @@ pub enum Topic {
     BlowUp,
     /// The method a run left running uses, and why.
     LastingDefault,
+    /// A `--save` file not named `.rrd`.
+    FileName,
     /// Where viewers can join a served run.
     Serving,
     /// How long a browser page can stay open.
@@ -388,6 +390,18 @@ pub fn tolerance_exceeded(plan: &RunPlan, frame: &Frame) -> Notice {
             frame.error_estimate.map_or(f64::NAN, |e| e.tip),
             plan.tolerance.unwrap_or(f64::NAN),
             plan.segments
+        ),
+    )
+}
+
+/// A `--save` file whose name does not say it is a Rerun recording.
+pub fn misnamed_file(path: &std::path::Path) -> Notice {
+    Notice::new(
+        Topic::FileName,
+        format!(
+            "rope: warning: --save {}: the file is a Rerun recording whatever its name; \
+             name it with .rrd so that `rerun` and other tools recognise it",
+            path.display()
         ),
     )
 }

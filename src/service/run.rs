@@ -52,6 +52,9 @@ pub fn run(args: &RunArgs, session: &Session) -> Result<Outcome, ServiceError> {
         everything: blueprint::blueprint(headline.as_deref(), &lanes),
         live: blueprint::live(headline.as_deref(), &lanes, rates.shape_interval()),
     };
+    if let Some(path) = args.output.misnamed_file() {
+        tell(notices::misnamed_file(path));
+    }
     let output = match args.output.open("rope", layouts, args.endless()) {
         Ok(output) => output,
         Err(err @ OutputError::Save { .. }) => return Err(ServiceError::bad_input(err)),
