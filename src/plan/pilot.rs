@@ -346,7 +346,7 @@ fn committed_covers(duration: f64) -> bool {
 }
 
 /// Of `method`'s own model (from its pilots) and its committed one (in `models`, for this
-/// scene, duration and tolerance: [`tolerance::committed_model`]), the one that asks fewer segments for `eps`, the
+/// scene, duration and tolerance: [`Committed::look_up`]), the one that asks fewer segments for `eps`, the
 /// committed one only where it covers the run's duration; `None` without an own model. Both
 /// bound measured errors: the own model the scene's at N ≤ 64, extrapolated; the committed one the release atlas's at this angle's neighbours, or the
 /// worst of six scenes, up to large N. Where a whip's error constant falls at large N, which

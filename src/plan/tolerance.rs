@@ -1,6 +1,6 @@
 //! The rule `rope run --tolerance EPS` uses to model a scene with no more than it needs: the
 //! cheapest method, N and k whose tip error is predicted to stay within EPS, from each
-//! method's committed error model ([`committed_model`]: the release atlas where it serves,
+//! method's committed error model ([`Committed`]: the release atlas where it serves,
 //! else the one law with its measured safety factor in its
 //! [`Descriptor`](crate::methods::Descriptor)) and its cost.
 
@@ -73,8 +73,9 @@ pub struct Committed {
 }
 
 impl Committed {
-    /// Each method's committed model from `scene` to `duration` for `tolerance`
-    /// ([`committed_model`]).
+    /// Each method's committed model from `scene` to `duration` for `tolerance`: the release
+    /// atlas's ([`from_atlas`]) where it serves, else the method's one law, fitted to the
+    /// worst of six scenes.
     pub fn look_up(scene: &Scene, duration: f64, tolerance: f64) -> Self {
         let models = MethodKind::ALL
             .into_iter()
@@ -110,18 +111,6 @@ impl Committed {
 /// window, and the six scenes the methods' laws were fitted to, both to t = 3. Past it a
 /// committed model may not overrule the pilots, which measure the run's own duration.
 pub const COMMITTED_UNTIL: f64 = super::atlas::WINDOW;
-
-/// `method`'s committed error model from `scene` to `duration` for `tolerance`: the release
-/// atlas's ([`from_atlas`]) where it serves, else the method's one law, fitted to the worst
-/// of six scenes.
-pub fn committed_model(
-    method: MethodKind,
-    scene: &Scene,
-    duration: f64,
-    tolerance: f64,
-) -> ErrorModel {
-    from_atlas(method, scene, duration, tolerance).unwrap_or(method.descriptor().error_model)
-}
 
 /// The release atlas's error model for `method` from `scene` to `duration` at `tolerance`:
 /// `None` unless the method is of the rods the atlas measured (the chain's discretization),

@@ -9,6 +9,7 @@ pub mod run;
 pub mod study;
 
 use crate::error::ConfigError;
+use crate::run::Verdict;
 use notices::{Listener, Terminal};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, OnceLock};
@@ -17,8 +18,6 @@ use std::sync::{Arc, OnceLock};
 /// [`crate::run::Verdict::exit_status`]'s: 3 a diverged run, 4 a run whose live estimate
 /// passed `--tolerance`, 130 an interrupted one; 1 is anything else.
 pub const EXIT_BAD_INPUT: u8 = 2;
-/// Exit status of a run stopped by Ctrl-C or SIGTERM.
-pub const EXIT_INTERRUPTED: u8 = 130;
 
 /// What a command runs with: the flag that stops it, who hears what it says, and the
 /// command line its findings cite.
@@ -60,7 +59,8 @@ fn interrupt_flag() -> anyhow::Result<Arc<AtomicBool>> {
         let flag = Arc::clone(&stop);
         ctrlc::set_handler(move || {
             if flag.swap(true, Ordering::SeqCst) {
-                std::process::exit(i32::from(EXIT_INTERRUPTED)); // a second Ctrl-C: leave now
+                // A second Ctrl-C: leave now, as an interrupted run.
+                std::process::exit(i32::from(Verdict::Interrupted.exit_status()));
             }
             eprintln!("rope: interrupted, finishing the recording…");
         })

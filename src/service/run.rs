@@ -58,7 +58,7 @@ pub fn run(args: &RunArgs, session: &Session) -> Result<Outcome, ServiceError> {
     let output = match args.output.open("rope", layouts, args.endless()) {
         Ok(output) => output,
         Err(err @ OutputError::Save { .. }) => return Err(ServiceError::bad_input(err)),
-        Err(err) => return Err(err).context("opening the Rerun recording")?,
+        Err(err) => Err(err).context("opening the Rerun recording")?,
     };
     if let (Some(url), Some(live)) = (&output.serving, &output.serving_live) {
         let limit = args.output.server_memory_limit.to_string();

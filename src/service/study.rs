@@ -3,7 +3,7 @@
 //! its files written to `--out`. What it says goes to the [`Listener`] of its [`Session`]:
 //! the findings as a report, the rest as notices.
 
-use super::notices::{Listener, Notice, Topic};
+use super::notices::{Notice, Topic};
 use super::{ServiceError, Session};
 use crate::cli::{CheckSize, StudyArgs, check_writable_file, writable_dir};
 use crate::methods::MethodKind;
@@ -25,8 +25,8 @@ fn wrote(session: &Session, what: &str, out: &std::path::Path) {
 }
 
 /// The study's findings, the report the terminal prints on stdout.
-fn report(listener: &dyn Listener, markdown: String) {
-    listener.tell(Notice::new(Topic::Report, markdown));
+fn report(session: &Session, markdown: String) {
+    session.listener.tell(Notice::new(Topic::Report, markdown));
 }
 
 /// `rope study`: the grid, the reference, the findings and charts; optionally a recording.
@@ -64,15 +64,11 @@ pub fn study(args: &StudyArgs, session: &Session) -> Result<(), ServiceError> {
             ),
         );
     }
-    let reference = match args
+    let reference = args
         .reference
         .as_deref()
         .map(|p| crate::cli::reference_file(p, &plan))
-    {
-        Some(Ok(file)) => Some(file),
-        Some(Err(err)) => return Err(err.into()),
-        None => None,
-    };
+        .transpose()?;
     if args.reference_only {
         let path = crate::study::execute_reference_only(spec, plan.reference_segments, &args.out)?;
         say(
@@ -150,7 +146,7 @@ pub fn study(args: &StudyArgs, session: &Session) -> Result<(), ServiceError> {
         rec.flush_blocking()
             .context("writing the study recording")?;
     }
-    report(&*session.listener, outcome.markdown.clone());
+    report(session, outcome.markdown);
     let findings = &outcome.findings;
     for r in &findings.at_target {
         if let Some(edge) = findings.edge(r) {
@@ -192,7 +188,7 @@ fn long_runs(session: &Session, args: &StudyArgs, duration: f64) -> Result<(), S
             counter.inc()
         })?;
     counter.finish();
-    report(&*session.listener, markdown);
+    report(session, markdown);
     wrote(
         session,
         "long_run.csv, long_run.md and the chart",
@@ -216,7 +212,7 @@ fn merge(
             None => return Err(err.into()),
         },
     };
-    report(&*session.listener, outcome.markdown.clone());
+    report(session, outcome.markdown);
     say(
         session,
         format!(
@@ -256,7 +252,7 @@ fn estimate_check(session: &Session, args: &StudyArgs) -> Result<(), ServiceErro
     let markdown =
         crate::study::execute_estimate_check(&spec, &args.out, command, || counter.inc())?;
     counter.finish();
-    report(&*session.listener, markdown);
+    report(session, markdown);
     wrote(
         session,
         "estimate_check.md, estimate_check.csv and estimate_check.png",
@@ -302,7 +298,7 @@ fn tolerance_check(
             counter.inc()
         })?;
     counter.finish();
-    report(&*session.listener, markdown);
+    report(session, markdown);
     wrote(
         session,
         "tolerance_check.md and tolerance_check.svg/.png",
@@ -329,7 +325,7 @@ fn blow_up(session: &Session, args: &StudyArgs, duration: f64) -> Result<(), Ser
     let markdown =
         crate::study::execute_blow_up(&scene, duration, &args.out, command, || counter.inc())?;
     counter.finish();
-    report(&*session.listener, markdown);
+    report(session, markdown);
     wrote(session, "blow_up.md, blow_up.csv and the charts", &args.out);
     Ok(())
 }
