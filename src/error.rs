@@ -166,7 +166,7 @@ pub enum ConfigError {
     #[error("reference = {path}: {reason}; write one with `rope study --reference-only --out DIR`")]
     ReferenceUnreadable { path: String, reason: String },
     #[error(
-        "{flag}: the {scene} scene does not take --{flag} (it would be ignored); the release scene takes --angle, the mode scene --mode-number and --amplitude (choose with --scene)"
+        "{flag}: the {scene} scene does not take --{flag} (it would be ignored); the release scene takes --angle, the mode scene --mode-number and --amplitude, the fold scene --gap (choose with --scene)"
     )]
     ForeignSceneFlag {
         flag: &'static str,
@@ -187,6 +187,14 @@ pub enum ConfigError {
         "amplitude = {0}: must be finite with |A| ≤ 0.2 (A is the tip's sideways displacement in string lengths; the mode shapes are small-oscillation solutions)"
     )]
     Amplitude(f64),
+    #[error(
+        "gap = {0}: the fold's two ends must be more than 0 and less than 2/π = 0.6366 apart (the half circle at its bottom, of diameter gap, must leave both arms some length); try 0.02 to 0.05, with --segments at least 2 / gap so that two rods or more span it"
+    )]
+    FoldGap(f64),
+    #[error(
+        "tolerance: --tolerance does not serve the {0} scene: its error models and atlas are measured on releases and modes, and pilots coarse enough to be cheap cannot draw the fold's bend (two rods or more across the gap); choose --method midpoint and --segments at least 2 / gap instead (for example --segments 100 for --gap 0.02)"
+    )]
+    ToleranceScene(&'static str),
 }
 
 /// Why and when a run stopped producing trustworthy numbers. No value computed after it is

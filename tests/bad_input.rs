@@ -240,3 +240,13 @@ fn realtime_speed_not_positive() {
     .unwrap_err();
     assert!(matches!(err, ConfigError::Realtime(_)));
 }
+
+#[test]
+fn a_fold_gap_of_zero_negative_not_finite_or_past_two_over_pi() {
+    for gap in [0.0, -0.01, f64::NAN, f64::INFINITY, 0.64, 1.0] {
+        let err = config(MethodKind::Midpoint, Scene::Fold { gap }, 100, None).unwrap_err();
+        assert!(matches!(err, ConfigError::FoldGap(_)), "{gap}: {err}");
+        assert!(err.to_string().contains("gap"), "{err}");
+    }
+    assert!(config(MethodKind::Midpoint, Scene::Fold { gap: 0.63 }, 100, None).is_ok());
+}

@@ -143,6 +143,22 @@ fn input_that_cannot_run_comes_back_as_bad_input_naming_the_flag() {
     }
     // Refused before anything is announced or opened.
     assert!(heard.notices().is_empty(), "{:?}", heard.notices());
+    // --tolerance does not serve the fold, and says what to do instead.
+    let fold = run_args(&["--scene", "fold", "--tolerance", "1e-2"]);
+    match run::run(&fold, &session) {
+        Err(ServiceError::BadInput(text)) => {
+            assert!(
+                text.starts_with("tolerance") && text.contains("--segments"),
+                "{text}"
+            )
+        }
+        other => panic!("{other:?}"),
+    }
+    // A flag of another scene is refused, not ignored.
+    match run::run(&run_args(&["--gap", "0.02"]), &session) {
+        Err(ServiceError::BadInput(text)) => assert!(text.starts_with("gap"), "{text}"),
+        other => panic!("{other:?}"),
+    }
 }
 
 #[test]
@@ -229,4 +245,45 @@ fn a_file_not_named_rrd_is_warned_of_and_still_written() {
     assert!(std::fs::read(&file).unwrap().starts_with(b"RRF2"));
     let heard = told_saving_to(&dir.join("swing.rrd"));
     assert!(!heard.told(Topic::FileName), "{:?}", heard.notices());
+}
+
+#[test]
+fn a_fold_runs_the_midpoint_by_default_and_a_bend_of_too_few_rods_is_warned() {
+    let dir = scratch("fold");
+    let file = dir.join("fold.rrd");
+    let (session, heard) = listened();
+    let args = run_args(&[
+        "--scene",
+        "fold",
+        "--segments",
+        "40",
+        "--duration",
+        "1.0",
+        "--save",
+        file.to_str().unwrap(),
+    ]);
+    let outcome = run::run(&args, &session).expect("the fold runs");
+    assert_eq!(outcome.exit_status, 0);
+    assert_eq!(outcome.summary.method.name(), "midpoint");
+    // The default gap, 0.04, spans 1.6 rods at N = 40.
+    assert!(heard.told(Topic::CoarseBend));
+    assert!(heard.told(Topic::LastingDefault));
+    // The summary reads the theory where the free end has fallen 0.25 and 0.5.
+    let falls: Vec<f64> = outcome.summary.theory.iter().map(|t| t.fall).collect();
+    assert_eq!(falls, [0.25, 0.5]);
+
+    let (session, heard) = listened();
+    let args = run_args(&[
+        "--scene",
+        "fold",
+        "--duration",
+        "0.1",
+        "--save",
+        file.to_str().unwrap(),
+    ]);
+    run::run(&args, &session).expect("the fold runs");
+    assert!(
+        !heard.told(Topic::CoarseBend),
+        "four rods across at N = 100"
+    );
 }

@@ -1,7 +1,7 @@
 //! `rope run`'s flags, and the request for each scene they become.
 
 use super::limits::LimitArgs;
-use super::scene::SceneArgs;
+use super::scene::{SceneArgs, SceneKind};
 use crate::error::ConfigError;
 use crate::methods::MethodKind;
 use crate::plan::runs::{Planned, RunRequest, plan_scene};
@@ -54,8 +54,8 @@ pub struct RunArgs {
     pub tolerance: Option<f64>,
 
     /// Numerical method [default: the report's (seed); for a run left running (--duration
-    /// inf, --loop, --serve-grpc, --web), the one that keeps the energy at every frame
-    /// (midpoint), as printed at the start]. A list (e.g. seed,chain,rattle)
+    /// inf, --loop, --serve-grpc, --web) and for the fold scene, the one that keeps the energy
+    /// at every frame (midpoint), as printed at the start]. A list (e.g. seed,chain,rattle)
     /// runs the methods side by side on the same frame times, in one recording: each at
     /// --segments and its own default step (or --dt), brought down so that 30 instants a
     /// time unit fall on its steps (whatever --log-rate).
@@ -142,7 +142,15 @@ impl RunArgs {
         self.method
             .first()
             .copied()
-            .unwrap_or_else(|| MethodKind::default_for(self.lasts()))
+            .unwrap_or_else(|| match self.fold_default() {
+                true => MethodKind::FOLD_DEFAULT,
+                false => MethodKind::default_for(self.lasts()),
+            })
+    }
+
+    /// Whether the method is the fold's default: none named, and the scene a fold.
+    pub fn fold_default(&self) -> bool {
+        self.method.is_empty() && self.scene.scene == SceneKind::Fold
     }
 
     /// Whether the run is meant to be left running: endless (`--duration inf`), looping, or
@@ -154,7 +162,7 @@ impl RunArgs {
     /// Whether the method is the default for a run left running: none named, none chosen
     /// by `--tolerance`, and the run [`lasts`](Self::lasts).
     pub fn lasting_default(&self) -> bool {
-        self.method.is_empty() && self.tolerance.is_none() && self.lasts()
+        self.method.is_empty() && self.tolerance.is_none() && self.lasts() && !self.fold_default()
     }
 
     /// Whether the run never ends by itself: `--duration inf`, or `--loop` until Ctrl-C.

@@ -30,6 +30,12 @@ pub struct SceneArgs {
     /// Tip displacement of the `mode` scene, in string lengths (|A| ≤ 0.2) [default: 0.05].
     #[arg(long, allow_negative_numbers = true, allow_hyphen_values = true)]
     pub amplitude: Option<f64>,
+
+    /// How far apart the two ends of the `fold` scene start, in string lengths (0 < d < 2/π)
+    /// [default: 0.04]. Its bend is a half circle of this diameter: give --segments at least
+    /// 2 / gap so that two rods or more span it.
+    #[arg(long, allow_negative_numbers = true, allow_hyphen_values = true)]
+    pub gap: Option<f64>,
 }
 
 impl SceneArgs {
@@ -39,6 +45,9 @@ impl SceneArgs {
     pub const DEFAULT_MODE: u32 = 1;
     /// The mode's tip displacement when none is given.
     pub const DEFAULT_AMPLITUDE: f64 = 0.05;
+    /// The fold's gap when none is given: four rods across it at the default N = 100, and
+    /// narrow enough for Calkin & March's limit of no gap.
+    pub const DEFAULT_GAP: f64 = 0.04;
 
     /// The scenes the flags describe, in the order given. A flag of the other scene is
     /// refused, naming it, rather than silently ignored.
@@ -47,6 +56,9 @@ impl SceneArgs {
             flag,
             scene: self.scene.name(),
         };
+        if self.scene != SceneKind::Fold && self.gap.is_some() {
+            return Err(foreign("gap"));
+        }
         match self.scene {
             SceneKind::Release => {
                 if !self.mode_number.is_empty() {
@@ -80,6 +92,20 @@ impl SceneArgs {
                     .map(|&number| Scene::Mode { number, amplitude })
                     .collect())
             }
+            SceneKind::Fold => {
+                if !self.angle.is_empty() {
+                    return Err(foreign("angle"));
+                }
+                if !self.mode_number.is_empty() {
+                    return Err(foreign("mode-number"));
+                }
+                if self.amplitude.is_some() {
+                    return Err(foreign("amplitude"));
+                }
+                Ok(vec![Scene::Fold {
+                    gap: self.gap.unwrap_or(Self::DEFAULT_GAP),
+                }])
+            }
         }
     }
 
@@ -94,6 +120,7 @@ impl SceneArgs {
                 flag: match self.scene {
                     SceneKind::Release => "angle",
                     SceneKind::Mode => "mode-number",
+                    SceneKind::Fold => "gap",
                 },
                 count: scenes.len(),
             }),
@@ -108,6 +135,9 @@ pub enum SceneKind {
     Release,
     /// Hanging at rest, displaced by --amplitude in the shape of mode --mode-number.
     Mode,
+    /// Folded in a U with both ends at the support's height, --gap apart; the free end is
+    /// let go and falls faster than gravity (Calkin & March).
+    Fold,
 }
 
 impl SceneKind {
@@ -116,6 +146,7 @@ impl SceneKind {
         match self {
             Self::Release => "release",
             Self::Mode => "mode",
+            Self::Fold => "fold",
         }
     }
 }

@@ -50,6 +50,14 @@ impl MethodKind {
     /// summary say it.
     pub const DEFAULT_LASTING_BECAUSE: &str = "it keeps the energy at every frame, at about three quarters of the chain's cost per time unit";
 
+    /// The method of a fold when none is named: the fold ends in a snap, the free end
+    /// whipping the last rods round at thousands of radians a time unit, and `midpoint`
+    /// keeps the energy through it to round-off (`tests/fold_physics.rs`).
+    pub const FOLD_DEFAULT: MethodKind = MethodKind::Midpoint;
+
+    /// Why [`Self::FOLD_DEFAULT`] is the fold's default, as the run and its summary say it.
+    pub const FOLD_DEFAULT_BECAUSE: &str = "it keeps the energy through the final snap to round-off, where the report's scheme diverges in the first second, rattle's energy jumps and the chain's drifts";
+
     /// The method `rope study` computes its converged reference with: of a known, whole order
     /// in h (Richardson's extrapolation needs one) and with no stability limit to respect.
     pub const REFERENCE: MethodKind = MethodKind::Chain;

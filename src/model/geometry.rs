@@ -137,6 +137,21 @@ pub fn tip_velocity(angles: &[f64], angular_velocity: &[f64]) -> Vector2<f64> {
         })
 }
 
+/// The string's momentum (mass 1): Σ m_i v_i over the rods' centres, = Σ h φ̇_j n_j (1 − s_j),
+/// s_j = (j + ½) h, since rod j's turn moves every centre beyond it and its own by half.
+pub fn momentum(angles: &[f64], angular_velocity: &[f64]) -> Vector2<f64> {
+    let h = 1.0 / angles.len() as f64;
+    angles
+        .iter()
+        .zip(angular_velocity)
+        .enumerate()
+        .fold(Vector2::zeros(), |p, (j, (&phi, &w))| {
+            let (s, c) = phi.sin_cos();
+            let beyond = 1.0 - (j as f64 + 0.5) * h;
+            p + h * w * beyond * Vector2::new(-s, c)
+        })
+}
+
 /// Tip acceleration Σ h (φ̈_i n_i − φ̇_i² t_i).
 pub fn tip_acceleration(
     angles: &[f64],

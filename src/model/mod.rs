@@ -4,8 +4,10 @@
 
 pub mod analysis;
 pub mod bessel;
+pub mod fold;
 pub mod geometry;
 pub mod scene;
+pub mod theory;
 
 pub use geometry::{Energy, Point};
 pub use scene::Scene;

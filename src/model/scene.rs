@@ -1,8 +1,10 @@
 //! Scenes: the initial states a run starts from, each a small function of the segment count.
 
 use super::bessel;
+use super::fold;
+use super::theory::{Comparison, Reading};
 use crate::error::ConfigError;
-use std::f64::consts::FRAC_PI_2;
+use std::f64::consts::{FRAC_PI_2, PI};
 
 /// An initial state of the string: angles of its segments, at rest.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -13,7 +15,20 @@ pub enum Scene {
     /// `number`-th small-oscillation mode (D. Bernoulli). `amplitude` is the tip's sideways
     /// displacement in string lengths.
     Mode { number: u32, amplitude: f64 },
+    /// Folded in a U and at rest: both ends at the support's height, `gap` apart, the bottom
+    /// a half circle of diameter `gap`; the end away from the support is let go (Calkin &
+    /// March's falling chain, [`fold`]).
+    Fold { gap: f64 },
 }
+
+/// The largest gap a fold can have: at 2/π the half circle takes the whole string.
+pub const FOLD_GAP_MAX: f64 = 2.0 / PI;
+
+/// The fewest rods across a fold's gap (d/h) for its bend to be drawn well enough to follow
+/// Calkin & March's prediction: at two, `midpoint`'s free end was within 0.8 % of its
+/// speed to x = 0.75 at N = 50 … 400; below one, up to 11 % off (`examples/fold_bend.rs`,
+/// `assets/fold/bend.csv`).
+pub const FOLD_RODS_ACROSS_GAP: f64 = 2.0;
 
 impl Scene {
     /// Short name used on the command line and in summaries.
@@ -21,6 +36,7 @@ impl Scene {
         match self {
             Self::Release { .. } => "release",
             Self::Mode { .. } => "mode",
+            Self::Fold { .. } => "fold",
         }
     }
 
@@ -40,6 +56,11 @@ impl Scene {
                     return Err(ConfigError::Amplitude(amplitude));
                 }
             }
+            Self::Fold { gap } => {
+                if !(gap > 0.0 && gap < FOLD_GAP_MAX) {
+                    return Err(ConfigError::FoldGap(gap));
+                }
+            }
         }
         Ok(())
     }
@@ -48,7 +69,7 @@ impl Scene {
     pub fn support_angle(&self) -> f64 {
         match *self {
             Self::Release { angle_deg } => angle_deg.to_radians(),
-            Self::Mode { .. } => FRAC_PI_2,
+            Self::Mode { .. } | Self::Fold { .. } => FRAC_PI_2,
         }
     }
 
@@ -59,7 +80,7 @@ impl Scene {
             Self::Mode { number, .. } => {
                 Some(std::f64::consts::TAU / bessel::mode_frequency(number))
             }
-            Self::Release { .. } => None,
+            Self::Release { .. } | Self::Fold { .. } => None,
         }
     }
 
@@ -73,7 +94,40 @@ impl Scene {
                 let (sin, cos) = angle_deg.to_radians().sin_cos();
                 Some((-sin * tip_x + cos * tip_y - cos * time * time / 2.0).abs())
             }
-            Self::Mode { .. } => None,
+            Self::Mode { .. } | Self::Fold { .. } => None,
+        }
+    }
+
+    /// What the scene's theory predicts of the motion `reading` measures, beside the
+    /// measurement: for a fold, the free end's fall, its speed and the support's tension
+    /// against Calkin & March's string ([`fold`]); nothing for a release or a mode, whose
+    /// checks are in the summary. The predictions at the measured fall stop once the
+    /// theory's free end has reached the bottom (its speed has no bound there, and the real
+    /// chain's end snaps and rebounds).
+    pub fn theory(&self, reading: &Reading) -> Vec<Comparison> {
+        match *self {
+            Self::Fold { .. } => {
+                let x = reading.tip.y - reading.initial_tip.y;
+                let falling = reading.time < fold::time_to_fall(1.0) && x < 0.999;
+                let before_snap = falling.then_some(x.max(0.0));
+                let at_fall = |f: fn(f64) -> f64| before_snap.map(f);
+                vec![
+                    Comparison::new(Comparison::FALL, x)
+                        .predicted("Calkin–March", Some(fold::fall_at(reading.time)))
+                        .predicted("free fall", Some(reading.time * reading.time / 2.0)),
+                    Comparison::new(Comparison::SPEED, reading.tip_velocity.norm())
+                        .predicted("Calkin–March at this fall", at_fall(fold::speed))
+                        .predicted("free fall at this fall", at_fall(fold::free_fall_speed)),
+                    Comparison::new(Comparison::SUPPORT_TENSION, reading.support_tension)
+                        .predicted(
+                            "(1 + x)/2 + v²/4 at this fall",
+                            at_fall(fold::support_tension),
+                        ),
+                    Comparison::new(Comparison::MOMENTUM, reading.momentum.y)
+                        .predicted("(1 − x) v/2 at this fall", at_fall(fold::momentum)),
+                ]
+            }
+            Self::Release { .. } | Self::Mode { .. } => Vec::new(),
         }
     }
 
@@ -95,8 +149,39 @@ impl Scene {
                     })
                     .collect()
             }
+            Self::Fold { gap } => fold_angles(gap, segments),
         }
     }
+}
+
+/// The U of a fold cut into `segments` equal rods: rod i points along the chord of the U's
+/// piece from arc length s = i h to (i + 1) h, so the straight arms are exact and each rod on
+/// the half circle is parallel to its arc (the chord of a circular arc is parallel to the
+/// tangent at its middle). The rods are h long where the chords around the bend are a little
+/// shorter, so the free end starts within O(h²/d) of the support's height.
+fn fold_angles(gap: f64, segments: usize) -> Vec<f64> {
+    let radius = gap / 2.0;
+    // Each arm's length: the half circle takes π d / 2 of the unit string.
+    let arm = (1.0 - PI * radius) / 2.0;
+    // The U at arc length s (x away from the support, y down): down the held arm, round the
+    // half circle centred at (r, arm), up the free arm at x = d.
+    let point = |s: f64| -> (f64, f64) {
+        if s <= arm {
+            (0.0, s)
+        } else if s <= arm + PI * radius {
+            let theta = (s - arm) / radius;
+            (radius * (1.0 - theta.cos()), arm + radius * theta.sin())
+        } else {
+            (gap, arm - (s - arm - PI * radius))
+        }
+    };
+    let h = 1.0 / segments as f64;
+    (0..segments)
+        .map(|i| {
+            let (a, b) = (point(i as f64 * h), point((i + 1) as f64 * h));
+            (b.1 - a.1).atan2(b.0 - a.0)
+        })
+        .collect()
 }
 
 /// The scene in words, as every output names it: "release at 30°",
@@ -108,6 +193,7 @@ impl std::fmt::Display for Scene {
             Self::Mode { number, amplitude } => {
                 write!(f, "mode {number} (tip amplitude {amplitude})")
             }
+            Self::Fold { gap } => write!(f, "fold (gap {gap})"),
         }
     }
 }

@@ -73,6 +73,9 @@ pub fn plan_scene(request: &RunRequest, scene: Scene) -> Result<Planned, ConfigE
     };
     let (config, choice, pilots) = match request.tolerance {
         None => (asked, None, None),
+        Some(_) if matches!(scene, Scene::Fold { .. }) => {
+            return Err(ConfigError::ToleranceScene(scene.name()));
+        }
         Some(eps) => {
             // `--tolerance EPS` for this scene, this run's duration, log rate and memory.
             let (choice, pilots) = pilot::choose(

@@ -40,10 +40,32 @@ fn window(columns: [ContainerLike; 3]) -> Blueprint {
         )
 }
 
-/// The plots: energy (side by side, the disagreement), its deviation, the error estimate,
-/// and the diagnostics' tabs.
+/// The plots: energy (side by side, the disagreement; a fold, its theory: the free end's fall,
+/// speed and the support's tension), its deviation, the error estimate, and the diagnostics' tabs.
 fn plots(lanes: &[RunPlan]) -> Vertical {
+    let fold = lanes
+        .iter()
+        .all(|p| matches!(p.scene, crate::model::Scene::Fold { .. }));
     match lanes {
+        [_] if fold => Vertical::new([
+            series_view(
+                "Free end's fall x(t): measured, Calkin–March, free fall",
+                path::FALL,
+            )
+            .into(),
+            series_view(
+                "Free end's speed against Calkin–March at its fall",
+                path::SPEED,
+            )
+            .into(),
+            series_view(
+                "Support tension F_0 against (1 + x)/2 + v²/4 (units of m g)",
+                path::TENSION,
+            )
+            .into(),
+            deviation_view().into(),
+            diagnostics(false).into(),
+        ]),
         [_, _, ..] => Vertical::new([
             deviation_view().into(),
             disagreement_view(lanes).into(),
@@ -164,7 +186,8 @@ fn diagnostics(side_by_side: bool) -> Tabs {
     Tabs::new(tabs)
 }
 
-/// A time series view of one entity.
+/// A time series view of one entity and what is under it (a theory's quantity: its
+/// measurement and each prediction in one plot).
 fn series_view(title: &str, entity: &str) -> TimeSeriesView {
     TimeSeriesView::new(title).with_origin(entity)
 }

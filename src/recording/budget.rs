@@ -188,7 +188,16 @@ fn sample_frame(plan: &RunPlan, step: u64, time: f64, lane: Option<usize>) -> Fr
             let angle = swing * (1.0 + s * s);
             Point::new(s * angle.sin(), s * angle.cos())
         })
-        .collect();
+        .collect::<Vec<Point>>();
+    // The scene's theory beside the motion, as its frames would carry it (a fold's plots).
+    let theory = plan.scene.theory(&crate::model::theory::Reading {
+        time,
+        initial_tip: Point::origin(),
+        tip: nodes[n],
+        tip_velocity: Vector2::new(time.cos(), time.sin()),
+        support_tension: 1.0 + 0.2 * time.cos(),
+        momentum: Vector2::new(0.5 * time.cos(), 0.5 * time.sin()),
+    });
     let tension = (0..n)
         .map(|i| (1.0 + 0.3 * time.cos()) * (1.0 - (i as f64 + 0.5) / n as f64))
         .collect();
@@ -206,7 +215,9 @@ fn sample_frame(plan: &RunPlan, step: u64, time: f64, lane: Option<usize>) -> Fr
         energy_deviation: 1e-9 * time.cos(),
         tip_velocity: Vector2::new(time.cos(), time.sin()),
         tip_acceleration: Vector2::new(-time.sin(), time.cos()),
+        momentum: Vector2::new(0.5 * time.cos(), 0.5 * time.sin()),
         support_tension: 1.0 + 0.2 * time.cos(),
+        theory,
         constraint_residual: Some(1e-13),
         velocity_residual: Some(1e-13),
         error_estimate: plan.error_estimate.then_some(ErrorEstimate {

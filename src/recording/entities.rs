@@ -2,6 +2,7 @@
 //! users' own queries), the timelines, and every time series with its legend name, colour and
 //! how it is read off a frame.
 
+use crate::model::theory::Comparison;
 use crate::run::Frame;
 
 /// Entity paths: the contract with tests and with users' own queries.
@@ -56,6 +57,21 @@ pub mod path {
     pub const THEN_TIPS: &str = "then/tips";
     /// A line spanning the swing, so that the "then" view frames it as the live one does.
     pub const THEN_FRAME: &str = "then/frame";
+    /// A scene's theory beside the motion (`model::theory`): for a fold, the free end's fall,
+    /// its speed and the support's tension, each measured and as Calkin & March's string
+    /// and free fall have it.
+    pub const THEORY: &str = "theory";
+    pub const FALL: &str = "theory/fall";
+    pub const FALL_MEASURED: &str = "theory/fall/measured";
+    pub const FALL_PREDICTED: &str = "theory/fall/calkin_march";
+    pub const FALL_FREE: &str = "theory/fall/free_fall";
+    pub const SPEED: &str = "theory/speed";
+    pub const SPEED_MEASURED: &str = "theory/speed/measured";
+    pub const SPEED_PREDICTED: &str = "theory/speed/calkin_march";
+    pub const SPEED_FREE: &str = "theory/speed/free_fall";
+    pub const TENSION: &str = "theory/support_tension";
+    pub const TENSION_MEASURED: &str = "theory/support_tension/measured";
+    pub const TENSION_PREDICTED: &str = "theory/support_tension/calkin_march";
     pub const EVENTS: &str = "events";
     pub const PARAMETERS: &str = "parameters";
 }
@@ -81,7 +97,7 @@ pub fn log10_abs(x: f64) -> f64 {
 const LOG_FLOOR: f64 = -16.0;
 
 /// Every time series the recording carries, styled once and filled by each batch.
-pub const SERIES: [Series; 16] = [
+pub const SERIES: [Series; 24] = [
     (path::KINETIC, "kinetic", [230, 120, 30], |f| {
         f.energy.kinetic()
     }),
@@ -163,6 +179,49 @@ pub const SERIES: [Series; 16] = [
         [120, 120, 120],
         |f| log10_abs(disagreement(f)),
     ),
+    // Only a scene with a theory beside its motion (a fold) has these.
+    (
+        path::FALL_MEASURED,
+        "fall x, measured",
+        [40, 150, 80],
+        |f| theory(f, Comparison::FALL, None),
+    ),
+    (path::FALL_PREDICTED, "Calkin–March", [200, 40, 40], |f| {
+        theory(f, Comparison::FALL, Some(0))
+    }),
+    (path::FALL_FREE, "free fall t²/2", [125, 125, 125], |f| {
+        theory(f, Comparison::FALL, Some(1))
+    }),
+    (
+        path::SPEED_MEASURED,
+        "|v_tip|, measured",
+        [40, 150, 80],
+        |f| theory(f, Comparison::SPEED, None),
+    ),
+    (
+        path::SPEED_PREDICTED,
+        "Calkin–March at the measured x",
+        [200, 40, 40],
+        |f| theory(f, Comparison::SPEED, Some(0)),
+    ),
+    (
+        path::SPEED_FREE,
+        "free fall at the measured x",
+        [125, 125, 125],
+        |f| theory(f, Comparison::SPEED, Some(1)),
+    ),
+    (
+        path::TENSION_MEASURED,
+        "F_0, measured",
+        [200, 150, 0],
+        |f| theory(f, Comparison::SUPPORT_TENSION, None),
+    ),
+    (
+        path::TENSION_PREDICTED,
+        "(1 + x)/2 + v²/4 at the measured x",
+        [200, 40, 40],
+        |f| theory(f, Comparison::SUPPORT_TENSION, Some(0)),
+    ),
 ];
 
 /// The time series each of several methods side by side sends: what the plots show. A frame
@@ -183,6 +242,18 @@ pub const SIDE_BY_SIDE: [&str; 7] = [
 /// logarithms the plots show.
 pub const HISTORY_LEAVES_OUT: [&str; 3] =
     [path::DEVIATION, path::TIP_ESTIMATE, path::SHAPE_ESTIMATE];
+
+/// A frame's `quantity` of its scene's theory: measured (`prediction` `None`), or the
+/// prediction at that index; NaN (not drawn) where the frame has none.
+fn theory(f: &Frame, quantity: &str, prediction: Option<usize>) -> f64 {
+    let Some(c) = f.theory.iter().find(|c| c.quantity == quantity) else {
+        return f64::NAN;
+    };
+    match prediction {
+        None => c.measured,
+        Some(i) => c.predictions.get(i).and_then(|p| p.1).unwrap_or(f64::NAN),
+    }
+}
 
 /// A frame's distance from the most accurate method's string, if it has one.
 fn disagreement(f: &Frame) -> f64 {

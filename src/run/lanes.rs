@@ -21,7 +21,8 @@ const PACED_BATCH_TIME: f64 = 0.1;
 
 /// What a method's thread sends: its frames, then how it ended.
 enum Message {
-    Frame(Frame),
+    /// Boxed: a frame is large beside the end of a lane, and the channel holds either.
+    Frame(Box<Frame>),
     /// The method's last frame has been sent; why it stopped early, if it did.
     Ended(Option<Diverged>),
 }
@@ -67,7 +68,7 @@ pub fn run<S: FrameSink>(
                         method: method.as_mut(),
                         watch,
                     };
-                    let send = |frame| tx.send(Message::Frame(frame)).is_ok();
+                    let send = |frame| tx.send(Message::Frame(Box::new(frame))).is_ok();
                     let lane =
                         pipeline::simulate_and_send(plan, simulation, send, stop, &|_| {}, started);
                     // A sink that has gone no longer listens; nothing is lost by not telling it.
@@ -146,7 +147,7 @@ fn deliver<S: FrameSink>(
                 continue;
             }
             match rx.recv() {
-                Ok(Message::Frame(frame)) => instant.push((i, frame)),
+                Ok(Message::Frame(frame)) => instant.push((i, *frame)),
                 Ok(Message::Ended(diverged)) => {
                     live[i] = false;
                     stopped.extend(diverged.map(|d| (i, d)));

@@ -14,6 +14,7 @@ pub mod progress;
 pub mod simulate;
 pub mod sink;
 pub mod summary;
+pub mod theory_figures;
 pub mod trust;
 
 pub use config::{RunConfig, RunPlan};

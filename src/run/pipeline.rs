@@ -7,6 +7,8 @@ use super::simulate::{self, Frame, Options, Outcome, Watch};
 use super::sink::FrameSink;
 use super::summary::{Summary, TipSamples};
 use crate::error::ConfigError;
+use crate::model::geometry;
+use crate::model::theory::Reading;
 use crossbeam_channel::{Receiver, RecvTimeoutError};
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -151,10 +153,20 @@ pub(super) fn simulate_and_send(
         frame_grid: plan.frame_grid,
     };
     let mut samples = TipSamples::new(plan.scene);
+    let initial_tip = geometry::tip(&plan.scene.initial_angles(plan.segments));
     let cpu = cpu_time::ThreadTime::now();
     let Simulation { method, watch } = simulation;
-    let outcome = simulate::run_watched(method, watch, &options, Some(stop), |frame| {
+    let outcome = simulate::run_watched(method, watch, &options, Some(stop), |mut frame| {
+        frame.theory = plan.scene.theory(&Reading {
+            time: frame.time,
+            initial_tip,
+            tip: frame.tip(),
+            tip_velocity: frame.tip_velocity,
+            support_tension: frame.support_tension,
+            momentum: frame.momentum,
+        });
         samples.push(frame.time, frame.tip());
+        samples.theory.push(frame.time, &frame.theory);
         progress(&frame);
         if let Some(speed) = plan.realtime {
             pace(started, frame.time / speed, stop);

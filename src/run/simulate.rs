@@ -68,6 +68,9 @@ pub struct Frame {
     pub energy_deviation: f64,
     pub tip_velocity: Vector2<f64>,
     pub tip_acceleration: Vector2<f64>,
+    /// The string's momentum (mass 1, [`geometry::momentum`]): what the support's force
+    /// changes, beside gravity.
+    pub momentum: Vector2<f64>,
     /// The tension at the support, s = 0 ([`Method::support_tension`]): the first of
     /// `tension` sits below it.
     pub support_tension: f64,
@@ -85,6 +88,9 @@ pub struct Frame {
     /// In a run of several methods side by side: which one this frame is of, and how far its
     /// string is from the most accurate one's. `None` in a run of one method.
     pub lane: Option<Lane>,
+    /// What the scene's theory predicts of this frame's motion, beside the measurement
+    /// ([`Scene::theory`]); empty for a scene without one.
+    pub theory: Vec<crate::model::theory::Comparison>,
 }
 
 /// A frame's place in a run of several methods side by side.
@@ -192,6 +198,7 @@ pub fn frame(
         energy,
         energy_deviation: (energy.total() - energy_reference) / energy_scale,
         tip_velocity: geometry::tip_velocity(&obs.angle, &obs.angular_velocity),
+        momentum: geometry::momentum(&obs.angle, &obs.angular_velocity),
         tip_acceleration: geometry::tip_acceleration(
             &obs.angle,
             &obs.angular_velocity,
@@ -203,6 +210,7 @@ pub fn frame(
         error_estimate: None,
         tolerance_exceeded: false,
         lane: None,
+        theory: Vec::new(),
     }
 }
 

@@ -4,9 +4,11 @@
 use super::config::RunPlan;
 use super::estimate::Shadow;
 use super::simulate::{EstimateOutcome, Outcome, REFERENCE_STEP};
+use super::theory_figures::{FALL_WINDOW, TheoryAt, TheoryFigures};
 use crate::error::Diverged;
 use crate::methods::{MethodKind, StepStatistics};
 use crate::model::analysis;
+use crate::model::theory::Comparison;
 use crate::model::{Point, Scene};
 use serde::Serialize;
 use std::collections::VecDeque;
@@ -26,6 +28,8 @@ pub struct TipSamples {
     scene: Scene,
     latest: VecDeque<[f64; 3]>,
     free_fall: Option<FreeFall>,
+    /// What the frames measured against the scene's theory, where it has one.
+    pub theory: TheoryFigures,
 }
 
 impl TipSamples {
@@ -35,6 +39,7 @@ impl TipSamples {
             scene,
             latest: VecDeque::new(),
             free_fall: None,
+            theory: TheoryFigures::default(),
         }
     }
 
@@ -191,6 +196,10 @@ pub struct Summary {
     /// For a release: the largest distance of the tip from the free-fall law up to
     /// [`FREE_FALL_UNTIL`] (exact for the string until the bend arrives).
     pub free_fall: Option<FreeFall>,
+    /// For a fold: the free end's time, speed and the support's tension where it has fallen
+    /// 0.25, 0.5 and 0.75, each against Calkin & March's string (`model::fold`).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub theory: Vec<TheoryAt>,
     /// Why the recording could not be completed (e.g. the viewer went away), if it could not.
     pub recording_error: Option<String>,
     /// In a run of several methods side by side: the largest distance, at equal arc length,
@@ -227,12 +236,13 @@ impl Summary {
             Status::Ok
         };
         let free_fall = tip_samples.free_fall;
+        let theory = tip_samples.theory.read();
         let samples: Vec<[f64; 3]> = tip_samples.latest.into();
         let period = match plan.scene {
             Scene::Mode { .. } => {
                 analysis::period_from_zero_crossings(samples.iter().map(|s| (s[0], s[1])))
             }
-            Scene::Release { .. } => None,
+            Scene::Release { .. } | Scene::Fold { .. } => None,
         };
         let segment_steps = (outcome.steps as f64 * plan.segments as f64).max(1.0);
         Self {
@@ -278,6 +288,7 @@ impl Summary {
             period,
             period_theory: plan.scene.mode_period(),
             free_fall,
+            theory,
             recording_error,
             method_chosen_because: None,
             disagreement: None,
@@ -423,6 +434,35 @@ impl Summary {
     /// Bessel period of a mode, the free fall of a released tip.
     fn theory_lines(&self) -> String {
         let mut text = String::new();
+        for at in &self.theory {
+            let each: Vec<String> = at
+                .quantities
+                .iter()
+                .map(|q| {
+                    let against = match (q.predicted, q.relative_error) {
+                        (Some(p), Some(e)) => format!(" (theory {p:.4}, {:+.2} %)", 100.0 * e),
+                        _ => String::new(),
+                    };
+                    let window = match q.window_relative_error {
+                        Some(e) if q.quantity == Comparison::SUPPORT_TENSION => format!(
+                            ", {:.4} averaged over ±{FALL_WINDOW} of fall ({:+.2} %)",
+                            q.window_measured,
+                            100.0 * e
+                        ),
+                        _ => String::new(),
+                    };
+                    format!("{} {:.4}{against}{window}", q.quantity, q.measured)
+                })
+                .collect();
+            text += &format!(
+                "  fallen {:.2} at t = {:.4} (Calkin–March: t = {:.4}; free fall: {:.4}): {}\n",
+                at.fall,
+                at.time,
+                crate::model::fold::time_to_fall(at.fall),
+                (2.0 * at.fall).sqrt(),
+                each.join("; ")
+            );
+        }
         if let Some(f) = self.free_fall {
             text += &format!(
                 "  free fall of the tip (exact until the bend reaches it, near t = 1.2): off by at most {:.1e} up to t = {:.3}\n",

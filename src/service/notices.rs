@@ -4,6 +4,8 @@
 //! no stderr to parse.
 
 use crate::methods::MethodKind;
+use crate::model::Scene;
+use crate::model::scene::FOLD_RODS_ACROSS_GAP;
 use crate::plan::Planned;
 use crate::plan::pilot::{self, Basis, Pilots};
 use crate::run::config::{short_step, trimmed_fixed};
@@ -30,7 +32,9 @@ pub enum Topic {
     PastLimit,
     /// A run longer than its method is known to last.
     BlowUp,
-    /// The method a run left running uses, and why.
+    /// A fold whose bend is drawn by too few rods to follow its theory.
+    CoarseBend,
+    /// The method a run left running, or a fold, uses by default, and why.
     LastingDefault,
     /// A `--save` file not named `.rrd`.
     FileName,
@@ -140,6 +144,8 @@ pub struct Asked {
     pub dt_given: bool,
     /// The method of a run left running, when it is the default (none named or chosen).
     pub lasting_default: Option<MethodKind>,
+    /// The method of a fold, when it is the default (none named).
+    pub fold_default: Option<MethodKind>,
 }
 
 /// What was chosen for the user: the tolerance rule's choice, a default step, a default
@@ -186,6 +192,9 @@ pub fn announce(asked: &Asked, plans: &[Planned]) -> Vec<Notice> {
         ));
     }
     for Planned { plan, .. } in plans {
+        if let Some(notice) = coarse_bend(plan) {
+            notices.push(notice);
+        }
         if plan.cost.seconds > cost::ANNOUNCE_SECONDS {
             notices.push(Notice::new(
                 Topic::PredictedCost,
@@ -244,6 +253,15 @@ pub fn announce(asked: &Asked, plans: &[Planned]) -> Vec<Notice> {
         for lane in std::iter::once(plan).chain(others) {
             notices.extend(blow_up_warning(lane, !others.is_empty()));
         }
+    }
+    if let Some(method) = asked.fold_default {
+        notices.push(Notice::new(
+            Topic::LastingDefault,
+            format!(
+                "rope: the fold uses the {method} method: {} (--method to choose another)",
+                MethodKind::FOLD_DEFAULT_BECAUSE
+            ),
+        ));
     }
     // (--tolerance with an endless run was refused before.)
     if let Some(method) = asked.lasting_default {
@@ -324,6 +342,25 @@ fn pilot_lines(pilots: &Pilots, duration: f64) -> String {
         text += &format!("\n  {}: {what}", p.method);
     }
     text
+}
+
+/// Warns of a fold whose gap spans fewer than [`FOLD_RODS_ACROSS_GAP`] rods: its bend is
+/// then too coarse for the free end to follow Calkin & March's prediction.
+pub fn coarse_bend(plan: &RunPlan) -> Option<Notice> {
+    let Scene::Fold { gap } = plan.scene else {
+        return None;
+    };
+    let across = gap * plan.segments as f64;
+    (across < FOLD_RODS_ACROSS_GAP).then(|| {
+        Notice::new(
+            Topic::CoarseBend,
+            format!(
+                "rope: warning: the fold's gap of {gap} spans {across:.1} rods at N = {}: a bend of fewer than {FOLD_RODS_ACROSS_GAP} rods is too coarse for the free end to follow Calkin & March (below one, up to 11 % off in speed); give --segments {} or more, or a wider --gap",
+                plan.segments,
+                (FOLD_RODS_ACROSS_GAP / gap).ceil()
+            ),
+        )
+    })
 }
 
 /// Warns of a run longer than its method is known to last (the blow-up map's earliest at

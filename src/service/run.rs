@@ -39,6 +39,7 @@ pub fn run(args: &RunArgs, session: &Session) -> Result<Outcome, ServiceError> {
         tolerance: args.tolerance,
         dt_given: args.dt.is_some(),
         lasting_default: args.lasting_default().then(|| args.method()),
+        fold_default: args.fold_default().then(|| args.method()),
     };
     notices::announce(&asked, &plans).into_iter().for_each(tell);
     if let Some(path) = args.summary.as_deref() {
@@ -217,6 +218,13 @@ fn run_passes(
                     "{}, the default for a run left running (endless, looping or served): {}",
                     summary.method,
                     MethodKind::DEFAULT_LASTING_BECAUSE
+                ));
+            }
+            if args.fold_default() {
+                summary.method_chosen_because = Some(format!(
+                    "{}, the fold's default: {}",
+                    summary.method,
+                    MethodKind::FOLD_DEFAULT_BECAUSE
                 ));
             }
             if several {
