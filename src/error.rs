@@ -117,6 +117,10 @@ pub enum ConfigError {
         "angle = 0°: the seed scheme cannot start from the horizontal: its support tension F_0 = sin φ0 is zero there and the support condition (11) divides by it; start from a small angle (e.g. 1°) or use the chain method, which starts from the horizontal"
     )]
     SeedFromHorizontal,
+    #[error(
+        "scene = fold: the seed scheme cannot carry the folded chain: its equations move each angle by the tension's pull, and the fold's free arm falls with no tension at all: it diverges before t = 0.6 at any step (docs/physics.md), so no smaller --dt helps; use --method midpoint (which keeps the energy through the snap), chain or rattle"
+    )]
+    SeedFold,
     #[error("{flag}: a study is of one scene, {count} given; run one study per scene")]
     StudyScenes { flag: &'static str, count: usize },
     #[error("duration = {0}: a study's runs must end, at a finite number of time units > 0")]

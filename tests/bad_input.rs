@@ -250,3 +250,18 @@ fn a_fold_gap_of_zero_negative_not_finite_or_past_two_over_pi() {
     }
     assert!(config(MethodKind::Midpoint, Scene::Fold { gap: 0.63 }, 100, None).is_ok());
 }
+
+#[test]
+fn seed_scheme_refuses_the_fold_saying_why_and_what_works() {
+    let fold = Scene::Fold { gap: 0.04 };
+    let err = config(MethodKind::Seed, fold, 100, None).unwrap_err();
+    assert_eq!(err, ConfigError::SeedFold);
+    let text = err.to_string();
+    assert!(
+        text.contains("tension") && text.contains("midpoint"),
+        "{text}"
+    );
+    for method in [MethodKind::Chain, MethodKind::Rattle, MethodKind::Midpoint] {
+        assert!(config(method, fold, 100, None).is_ok(), "{method}");
+    }
+}

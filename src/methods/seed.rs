@@ -120,6 +120,9 @@ impl Seed {
         if scene.support_angle() == 0.0 {
             return Err(ConfigError::SeedFromHorizontal);
         }
+        if let Scene::Fold { .. } = scene {
+            return Err(ConfigError::SeedFold);
+        }
         let phi = scene.initial_angles(segments);
         let mut seed = Self {
             h: 1.0 / segments as f64,
