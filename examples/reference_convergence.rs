@@ -1,0 +1,82 @@
+//! How the rods' tip converges in N through the whip, release by release: the chain (the
+//! reference method) at N, 2N, 4N, … to t = 3 at its default step, compared at every 1/1000
+//! of a time unit. For each level it prints the largest change of the tip when N is doubled,
+//! the order that the changes show, and the own error of the reference extrapolated from the
+//! last three levels (the largest change of the extrapolation when it is made one level
+//! finer). This is the measurement that says what a converged reference costs.
+//!
+//! `cargo run --release --example reference_convergence -- 30,52 200 3200 [RATE]`
+//! (angles in degrees, the coarsest N, the finest N, and the frames a time unit compared,
+//! 1000 unless given: the tolerance check's 60 misses the whip's peaks between its frames).
+
+use rayon::prelude::*;
+use rope::model::Scene;
+use rope::study::trajectory::{Trajectory, frame_times};
+use std::time::Instant;
+
+/// Frames per time unit at which the levels are compared unless told: fine enough to judge
+/// between frames.
+const COMPARE_RATE: f64 = 1000.0;
+const DURATION: f64 = 3.0;
+
+fn main() -> anyhow::Result<()> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let (angles, coarsest, finest, rate) = match args.as_slice() {
+        [a, c, f] => (a, c, f, COMPARE_RATE),
+        [a, c, f, r] => (a, c, f, r.parse()?),
+        _ => anyhow::bail!("usage: reference_convergence ANGLES COARSEST_N FINEST_N [RATE]"),
+    };
+    let angles: Vec<f64> = angles
+        .split(',')
+        .map(str::parse)
+        .collect::<Result<_, _>>()?;
+    let (coarsest, finest): (usize, usize) = (coarsest.parse()?, finest.parse()?);
+    let mut levels = vec![coarsest];
+    while levels.last().is_some_and(|&n| 2 * n <= finest) {
+        levels.push(2 * levels[levels.len() - 1]);
+    }
+    let frames = frame_times(DURATION, rate);
+    println!("angle_deg,segments,wall_s,change_from_half,order,own_error");
+    for angle_deg in angles {
+        let scene = Scene::Release { angle_deg };
+        let runs: Vec<(Trajectory, f64)> = levels
+            .par_iter()
+            .map(|&n| {
+                let started = Instant::now(); // wall time: the levels run in parallel
+                let path = Trajectory::compute(&scene, n, DURATION)?;
+                Ok((path, started.elapsed().as_secs_f64()))
+            })
+            .collect::<anyhow::Result<_>>()?;
+        for (i, &n) in levels.iter().enumerate() {
+            let change = (i >= 1).then(|| runs[i].0.largest_gap(&runs[i - 1].0, &frames));
+            let previous = (i >= 2).then(|| runs[i - 1].0.largest_gap(&runs[i - 2].0, &frames));
+            let order = change
+                .zip(previous)
+                .map(|(c, p)| (p / c).log2().clamp(1.0, 2.0));
+            // The own error of the extrapolation from this level and the one below, measured
+            // as the change from the extrapolation one level coarser.
+            let own = order.map(|p| {
+                let extrapolated = |f: &Trajectory, c: &Trajectory, t: f64| {
+                    f.at(t) + (f.at(t) - c.at(t)) / (2f64.powf(p) - 1.0)
+                };
+                frames
+                    .iter()
+                    .map(|&t| {
+                        (extrapolated(&runs[i].0, &runs[i - 1].0, t)
+                            - extrapolated(&runs[i - 1].0, &runs[i - 2].0, t))
+                        .norm()
+                    })
+                    .fold(0.0, f64::max)
+            });
+            let show = |x: Option<f64>| x.map_or(String::new(), |x| format!("{x:.3e}"));
+            println!(
+                "{angle_deg},{n},{:.1},{},{},{}",
+                runs[i].1,
+                show(change),
+                order.map_or(String::new(), |p| format!("{p:.2}")),
+                show(own)
+            );
+        }
+    }
+    Ok(())
+}
