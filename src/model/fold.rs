@@ -40,7 +40,7 @@ pub fn momentum(x: f64) -> f64 {
 
 /// The time the free end takes to fall `x` (0 ≤ x ≤ 1): t = ∫ dx/v. With x = sin²θ the
 /// integrand becomes smooth, t = ∫₀^asin√x 2 cos²θ / sqrt(1 + cos²θ) dθ, and Simpson's rule
-/// on 256 intervals gives it to round-off.
+/// on 256 intervals gives it to 1e-10.
 pub fn time_to_fall(x: f64) -> f64 {
     let end = x.clamp(0.0, 1.0).sqrt().asin();
     let f = |theta: f64| {
@@ -65,7 +65,7 @@ pub fn fall_at(t: f64) -> f64 {
         return 1.0;
     }
     let (mut low, mut high) = (0.0, 1.0);
-    for _ in 0..60 {
+    for _ in 0..50 {
         let mid = 0.5 * (low + high);
         if time_to_fall(mid) < t {
             low = mid;
