@@ -5,11 +5,16 @@
 //! last three levels (the largest change of the extrapolation when it is made one level
 //! finer). This is the measurement that says what a converged reference costs.
 //!
-//! `cargo run --release --example reference_convergence -- 30,52 200 3200 [RATE]`
-//! (angles in degrees, the coarsest N, the finest N, and the frames a time unit compared,
-//! 1000 unless given: the tolerance check's 60 misses the whip's peaks between its frames).
+//! `cargo run --release --example reference_convergence -- 30,52 200 3200 [RATE [GRADING]]`
+//! (angles in degrees, the coarsest N, the finest N, the frames a time unit compared, 1000
+//! unless given: the tolerance check's 60 misses the whip's peaks between its frames; and
+//! rods graded towards the free end, s_i = 1 − (1 − i/N)^GRADING, where GRADING is given and
+//! not 1: `Chain::graded`).
 
 use rayon::prelude::*;
+use rope::methods::chain::Chain;
+use rope::methods::{Method, MethodKind};
+use rope::model::Point;
 use rope::model::Scene;
 use rope::study::trajectory::{Trajectory, frame_times};
 use std::time::Instant;
@@ -21,10 +26,13 @@ const DURATION: f64 = 3.0;
 
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let (angles, coarsest, finest, rate) = match args.as_slice() {
-        [a, c, f] => (a, c, f, COMPARE_RATE),
-        [a, c, f, r] => (a, c, f, r.parse()?),
-        _ => anyhow::bail!("usage: reference_convergence ANGLES COARSEST_N FINEST_N [RATE]"),
+    let (angles, coarsest, finest, rate, grading) = match args.as_slice() {
+        [a, c, f] => (a, c, f, COMPARE_RATE, 1.0),
+        [a, c, f, r] => (a, c, f, r.parse()?, 1.0),
+        [a, c, f, r, g] => (a, c, f, r.parse()?, g.parse()?),
+        _ => anyhow::bail!(
+            "usage: reference_convergence ANGLES COARSEST_N FINEST_N [RATE [GRADING]]"
+        ),
     };
     let angles: Vec<f64> = angles
         .split(',')
@@ -43,7 +51,10 @@ fn main() -> anyhow::Result<()> {
             .par_iter()
             .map(|&n| {
                 let started = Instant::now(); // wall time: the levels run in parallel
-                let path = Trajectory::compute(&scene, n, DURATION)?;
+                let path = match grading {
+                    1.0 => Trajectory::compute(&scene, n, DURATION)?,
+                    p => graded(&scene, n, p)?,
+                };
                 Ok((path, started.elapsed().as_secs_f64()))
             })
             .collect::<anyhow::Result<_>>()?;
@@ -79,4 +90,30 @@ fn main() -> anyhow::Result<()> {
         }
     }
     Ok(())
+}
+
+/// The chain of `n` rods graded with `exponent`, at the equal rods' default step (its
+/// substeps follow each rod's own wave and spin), its tip kept at every step to two past
+/// [`DURATION`].
+fn graded(scene: &Scene, n: usize, exponent: f64) -> anyhow::Result<Trajectory> {
+    let dt = MethodKind::Chain.default_dt(n);
+    let mut chain = Chain::graded(scene, n, dt, exponent)?;
+    let length = chain.lengths();
+    let tip = |angles: &[f64]| {
+        angles
+            .iter()
+            .zip(&length)
+            .fold(Point::origin(), |p, (&phi, &l)| {
+                p + l * nalgebra::Vector2::new(phi.cos(), phi.sin())
+            })
+    };
+    let last = (DURATION / dt).round() as usize;
+    let mut tips = vec![tip(chain.angles())];
+    for _ in 0..last + 2 {
+        chain
+            .step()
+            .map_err(|d| anyhow::anyhow!("graded chain at N = {n}: {d}"))?;
+        tips.push(tip(chain.angles()));
+    }
+    Ok(Trajectory::new(dt, tips))
 }

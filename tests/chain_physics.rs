@@ -142,3 +142,74 @@ fn a_hanging_string_holds_its_whole_weight_at_the_support() {
     let (outcome, frames) = run_frames(chain, hanging, n, chain.default_dt(n), 2.0, 10.0);
     assert_holds_its_weight_at_the_support(&outcome, &frames);
 }
+
+/// The tip of a chain of rods of `lengths`.
+fn tip_of(angles: &[f64], lengths: &[f64]) -> (f64, f64) {
+    angles
+        .iter()
+        .zip(lengths)
+        .fold((0.0, 0.0), |(x, y), (&phi, &l)| {
+            (x + l * phi.cos(), y + l * phi.sin())
+        })
+}
+
+#[test]
+fn graded_rods_of_all_but_equal_length_move_as_equal_rods() {
+    use rope::methods::Method;
+    use rope::methods::chain::Chain;
+    let dt = MethodKind::Chain.default_dt(100);
+    let mut equal = Chain::new(&THIRTY, 100, dt).unwrap();
+    let mut graded = Chain::graded(&THIRTY, 100, dt, 1.0 + 1e-12).unwrap();
+    for _ in 0..(1.5 / dt).round() as usize {
+        equal.step().unwrap();
+        graded.step().unwrap();
+    }
+    let (a, b) = (
+        tip_of(equal.angles(), &equal.lengths()),
+        tip_of(graded.angles(), &graded.lengths()),
+    );
+    assert!(
+        (a.0 - b.0).abs() < 1e-9 && (a.1 - b.1).abs() < 1e-9,
+        "{a:?} {b:?}"
+    );
+}
+
+#[test]
+fn graded_rods_fall_freely_keep_the_energy_and_reach_the_same_string() {
+    use rope::methods::Method;
+    use rope::methods::chain::Chain;
+    let n = 200;
+    let dt = MethodKind::Chain.default_dt(n);
+    let mut graded = Chain::graded(&HORIZONTAL, n, dt, 1.5).unwrap();
+    let mut equal = Chain::new(&HORIZONTAL, 2 * n, MethodKind::Chain.default_dt(2 * n)).unwrap();
+    let lengths = graded.lengths();
+    assert!((lengths.iter().sum::<f64>() - 1.0).abs() < 1e-12);
+    assert!(lengths[n - 1] < 0.2 * lengths[0]);
+    let start = graded.energy().total();
+    let mut worst_fall: f64 = 0.0;
+    let mut worst_energy: f64 = 0.0;
+    for step in 1..=(1.0 / dt).round() as usize {
+        graded.step().unwrap();
+        let t = step as f64 * dt;
+        let (_, y) = tip_of(graded.angles(), &lengths);
+        // From the horizontal the tip falls freely until the bend reaches it.
+        if t <= 0.75 {
+            worst_fall = worst_fall.max((y - t * t / 2.0).abs());
+        }
+        worst_energy = worst_energy.max((graded.energy().total() - start).abs());
+    }
+    for _ in 0..(1.0 / equal.dt()).round() as usize {
+        equal.step().unwrap();
+    }
+    let (g, e) = (
+        tip_of(graded.angles(), &lengths),
+        tip_of(equal.angles(), &equal.lengths()),
+    );
+    let apart = ((g.0 - e.0).powi(2) + (g.1 - e.1).powi(2)).sqrt();
+    eprintln!(
+        "graded rods (1.5, N = {n}): free fall to {worst_fall:.1e}, energy to {worst_energy:.1e}, tip {apart:.1e} from 2N equal rods at t = 1"
+    );
+    assert!(worst_fall < 1e-10, "{worst_fall}");
+    assert!(worst_energy < 1e-9, "{worst_energy}");
+    assert!(apart < 1e-4, "{apart}");
+}

@@ -80,6 +80,8 @@ pub struct Chain {
     alpha: Vec<f64>,
     solver: ForceSolver,
     support_tension: f64,
+    /// Rod lengths where they are graded ([`Chain::graded`]); `None` for N equal rods.
+    length: Option<Vec<f64>>,
 }
 
 impl Chain {
@@ -102,17 +104,65 @@ impl Chain {
             alpha: vec![0.0; n],
             solver: ForceSolver::new(n),
             support_tension: 0.0,
+            length: None,
         };
         chain.evaluate_now();
         Ok(chain)
     }
 
+    /// The chain of `segments` rods graded towards the free end, rod i spanning
+    /// s_i = 1 − (1 − i/N)^`exponent` to s_{i+1} (the last rod about `exponent` N^−`exponent` long),
+    /// at rest in `scene` (a release: every rod at its angle). A discretization for measuring
+    /// how the tip converges through the whip (`examples/graded_convergence.rs`); the run and
+    /// the planning use equal rods.
+    pub fn graded(
+        scene: &Scene,
+        segments: usize,
+        dt: f64,
+        exponent: f64,
+    ) -> Result<Self, ConfigError> {
+        let mut chain = Self::new(scene, segments, dt)?;
+        let n = segments as f64;
+        let edge = |i: usize| 1.0 - (1.0 - i as f64 / n).powf(exponent);
+        let length: Vec<f64> = (0..segments).map(|i| edge(i + 1) - edge(i)).collect();
+        // Each rod at the scene's angle at its middle (a release's are all one angle).
+        chain.length = Some(length);
+        chain.evaluate_now();
+        Ok(chain)
+    }
+
+    /// The rods' lengths: graded, or all 1/N.
+    pub fn lengths(&self) -> Vec<f64> {
+        let n = self.phi.len();
+        self.length
+            .clone()
+            .unwrap_or_else(|| vec![1.0 / n as f64; n])
+    }
+
+    /// The joint forces and angular accelerations at (φ, φ̇) = (`phi`, `omega`) into `alpha`.
+    fn solve(
+        solver: &mut ForceSolver,
+        length: Option<&[f64]>,
+        phi: &[f64],
+        omega: &[f64],
+        alpha: &mut [f64],
+    ) -> (f64, f64) {
+        match length {
+            None => solver.accelerations(phi, omega, alpha),
+            Some(length) => solver.accelerations_graded(phi, omega, length, alpha),
+        }
+    }
+
     /// Accelerations and forces at the current state; returns the largest joint force and
     /// the largest |φ̇|.
     fn evaluate_now(&mut self) -> (f64, f64) {
-        let extremes = self
-            .solver
-            .accelerations(&self.phi, &self.omega, &mut self.alpha);
+        let extremes = Self::solve(
+            &mut self.solver,
+            self.length.as_deref(),
+            &self.phi,
+            &self.omega,
+            &mut self.alpha,
+        );
         self.support_tension = -self.solver.tangent[0].dot(&self.solver.force[0]);
         extremes
     }
@@ -122,7 +172,21 @@ impl Chain {
     /// must each be resolved (k_sub ≤ C_F h / sqrt(F) and k_sub ≤ C_ω / |φ̇|).
     fn substeps(&self, force: f64, rate: f64) -> u64 {
         let h = 1.0 / self.phi.len() as f64;
-        let wave = self.k * force.max(1e-12).sqrt() / (SUBSTEP_COURANT * self.refinement * h);
+        // The fastest wave across a rod, sqrt(F)/h: equal rods take the largest force, graded
+        // ones each rod's own (the short end rods carry little).
+        let wave = match &self.length {
+            None => self.k * force.max(1e-12).sqrt() / (SUBSTEP_COURANT * self.refinement * h),
+            Some(length) => {
+                let fastest = self
+                    .solver
+                    .force
+                    .iter()
+                    .zip(length)
+                    .map(|(f, l)| f.norm().max(1e-12).sqrt() / l)
+                    .fold(0.0, f64::max);
+                self.k * fastest / (SUBSTEP_COURANT * self.refinement)
+            }
+        };
         let spin = self.k * rate / (SUBSTEP_ROTATION * self.refinement);
         let needed = wave.max(spin).ceil();
         if needed.is_finite() {
@@ -143,8 +207,13 @@ impl Chain {
             self.stage_omega[i] = self.omega[i] + 0.5 * dt * self.alpha[i];
         }
         for (weight, advance) in [(2.0, 0.5 * dt), (2.0, dt), (1.0, 0.0)] {
-            self.solver
-                .accelerations(&self.stage_phi, &self.stage_omega, &mut self.alpha);
+            Self::solve(
+                &mut self.solver,
+                self.length.as_deref(),
+                &self.stage_phi,
+                &self.stage_omega,
+                &mut self.alpha,
+            );
             for i in 0..n {
                 let (w, a) = (self.stage_omega[i], self.alpha[i]);
                 self.sum_phi[i] += weight * w;
@@ -187,8 +256,13 @@ impl Method for Chain {
         let dt = k / substeps as f64;
         for sub in 0..substeps {
             if sub > 0 {
-                self.solver
-                    .accelerations(&self.phi, &self.omega, &mut self.alpha);
+                Self::solve(
+                    &mut self.solver,
+                    self.length.as_deref(),
+                    &self.phi,
+                    &self.omega,
+                    &mut self.alpha,
+                );
             }
             self.rk4(dt);
         }
@@ -207,7 +281,12 @@ impl Method for Chain {
     }
 
     fn energy(&self) -> Energy {
-        geometry::energy(&self.phi, &self.omega)
+        match &self.length {
+            None => geometry::energy(&self.phi, &self.omega),
+            Some(length) => geometry::energy_of_rods(self.phi.len(), |i| {
+                (self.phi[i], self.omega[i], length[i])
+            }),
+        }
     }
 
     fn support_tension(&self) -> f64 {

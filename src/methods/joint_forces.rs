@@ -31,6 +31,18 @@ impl ForceSolver {
         }
     }
 
+    /// The rods' tangents and normals at angles `phi`; returns the largest |φ̇| of `omega`.
+    fn orient(&mut self, phi: &[f64], omega: &[f64]) -> f64 {
+        let mut max_rate: f64 = 0.0;
+        for i in 0..phi.len() {
+            let (s, c) = phi[i].sin_cos();
+            self.tangent[i] = Vector2::new(c, s);
+            self.normal[i] = Vector2::new(-s, c);
+            max_rate = max_rate.max(omega[i].abs());
+        }
+        max_rate
+    }
+
     /// Joint forces for angles `phi` and rates `omega`, then the angular accelerations.
     /// Returns the largest joint force and the largest |φ̇|, which set the stable step.
     pub(crate) fn accelerations(
@@ -43,13 +55,7 @@ impl ForceSolver {
         let h = 1.0 / n as f64;
         let m = h;
         let eye = Matrix2::identity();
-        let mut max_rate: f64 = 0.0;
-        for i in 0..n {
-            let (s, c) = phi[i].sin_cos();
-            self.tangent[i] = Vector2::new(c, s);
-            self.normal[i] = Vector2::new(-s, c);
-            max_rate = max_rate.max(omega[i].abs());
-        }
+        let max_rate = self.orient(phi, omega);
         let projector = |v: &Vector2<f64>| 3.0 * v * v.transpose();
         let half_mh = 0.5 * m * h;
         // Forward elimination.
@@ -87,6 +93,57 @@ impl ForceSolver {
             let f = self.offset[j] - self.gain[j] * after;
             self.force[j] = f;
             alpha[j] = scale * self.normal[j].dot(&(f + after));
+            max_force2 = max_force2.max(f.norm_squared());
+            after = f;
+        }
+        (max_force2.sqrt(), max_rate)
+    }
+
+    /// As [`ForceSolver::accelerations`], for rods of lengths `length` (summing to 1, mass
+    /// equal to length): each joint's row of the system is the uniform one with every rod's
+    /// blocks divided by its own mass, multiplied through by the length of the rod after the
+    /// joint. For graded rods, shorter towards the free end.
+    pub(crate) fn accelerations_graded(
+        &mut self,
+        phi: &[f64],
+        omega: &[f64],
+        length: &[f64],
+        alpha: &mut [f64],
+    ) -> (f64, f64) {
+        let n = phi.len();
+        let eye = Matrix2::identity();
+        let max_rate = self.orient(phi, omega);
+        let projector = |v: &Vector2<f64>| 3.0 * v * v.transpose();
+        // The centripetal pull of rod i on its ends, (h_i/2) φ̇_i² t_i.
+        let spin = |i: usize| 0.5 * length[i] * omega[i] * omega[i] * self.tangent[i];
+        let mut p_prev = projector(&self.normal[0]);
+        let mut diag = eye + p_prev;
+        let mut rhs = length[0] * (Vector2::new(0.0, -1.0) - spin(0));
+        for j in 0..n {
+            if j > 0 {
+                let p = projector(&self.normal[j]);
+                let ratio = length[j] / length[j - 1];
+                let lower = ratio * (p_prev - eye);
+                diag = ratio * (eye + p_prev) + eye + p - lower * self.gain[j - 1];
+                rhs = -length[j] * (spin(j - 1) + spin(j)) - lower * self.offset[j - 1];
+                p_prev = p;
+            }
+            let inv = diag
+                .try_inverse()
+                .unwrap_or_else(|| Matrix2::from_element(f64::NAN));
+            self.gain[j] = if j + 1 < n {
+                inv * (p_prev - eye)
+            } else {
+                Matrix2::zeros()
+            };
+            self.offset[j] = inv * rhs;
+        }
+        let mut after = Vector2::zeros();
+        let mut max_force2: f64 = 0.0;
+        for j in (0..n).rev() {
+            let f = self.offset[j] - self.gain[j] * after;
+            self.force[j] = f;
+            alpha[j] = -6.0 / (length[j] * length[j]) * self.normal[j].dot(&(f + after));
             max_force2 = max_force2.max(f.norm_squared());
             after = f;
         }

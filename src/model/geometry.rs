@@ -101,11 +101,20 @@ impl Energy {
 /// n = (−sin φ, cos φ).
 pub fn energy_of(n: usize, segment: impl Fn(usize) -> (f64, f64)) -> Energy {
     let h = 1.0 / n as f64;
-    let m = h;
+    energy_of_rods(n, |i| {
+        let (phi, omega) = segment(i);
+        (phi, omega, h)
+    })
+}
+
+/// As [`energy_of`], for rods of their own lengths (mass equal to length): `segment(i)` gives
+/// rod i's angle, rate and length.
+pub fn energy_of_rods(n: usize, segment: impl Fn(usize) -> (f64, f64, f64)) -> Energy {
     let (mut p, mut v) = (Vector2::zeros(), Vector2::zeros());
     let mut e = Energy::default();
     for i in 0..n {
-        let (phi, omega) = segment(i);
+        let (phi, omega, h) = segment(i);
+        let m = h;
         let (s, c) = phi.sin_cos();
         let t = Vector2::new(c, s);
         let normal = Vector2::new(-s, c);
