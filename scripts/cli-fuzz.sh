@@ -61,6 +61,7 @@ study_args() {
     ((RANDOM % 3 == 0)) && add --reference-segments 4 8 16 64 64 7 0 -2 x
     ((RANDOM % 3 == 0)) && add --angle 0 1 30 90 30 60 91 -5 nan x
     ((RANDOM % 6 == 0)) && args+=(--scene mode) && add --mode-number 1 2 0 && add --amplitude 0.05 0 nan
+    ((RANDOM % 12 == 0)) && args+=(--scene fold) && add --gap 0.04 0 nan
     ((RANDOM % 6 == 0)) && add --max-memory 1MB 100MB 1KB 50% 0 x
     ((RANDOM % 8 == 0)) && add --save "$scratch/study.rrd" /dev/null/s.rrd
     true
@@ -117,8 +118,13 @@ for ((r = 1; r <= runs; r++)); do
         add --mode-number 0 1 2 4 5 "1,2"
         add --amplitude "${numbers[@]}"
         ((RANDOM % 8 == 0)) && add --angle "${numbers[@]}"
+    elif ((RANDOM % 5 == 0)); then
+        args+=(--scene fold)
+        ((RANDOM % 2)) && add --gap "${numbers[@]}" 0.02 0.04 0.63 0.64
+        ((RANDOM % 8 == 0)) && add --angle "${numbers[@]}"
     else
         ((RANDOM % 3 == 0)) && add --angle "${numbers[@]}" "0,30" "30,60,90"
+        ((RANDOM % 12 == 0)) && add --gap 0.02 nan
     fi
     ((RANDOM % 4 == 0)) && add --log-rate "${numbers[@]}" 60 1000
     ((RANDOM % 5 == 0)) && add --tolerance "${numbers[@]}" 1e-2 3e-3 1e-12
