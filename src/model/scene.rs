@@ -98,6 +98,19 @@ impl Scene {
         }
     }
 
+    /// The scene's theory in a few sentences, for the viewer's Parameters: what its plots
+    /// hold the motion against. `None` for a scene whose checks are in the summary only.
+    pub fn theory_note(&self) -> Option<String> {
+        match *self {
+            Self::Fold { gap } => Some(format!(
+                "**Theory** (Calkin & March, Am. J. Phys. 57, 154 (1989)), x the free end's fall: an energy-conserving string's free end moves at v² = x (2 − x)/(1 − x), faster than free fall's 2x, and the support pulls with (1 + x)/2 + v²/4 of the weight; the whole fall takes {:.3} (free fall: {:.3}). The plots show each beside the run, at the run's own x, until the snap. The theory is for no gap; this one is {gap}, and the bend needs N ≥ 2/gap.",
+                fold::time_to_fall(1.0),
+                2f64.sqrt()
+            )),
+            Self::Release { .. } | Self::Mode { .. } => None,
+        }
+    }
+
     /// What the scene's theory predicts of the motion `reading` measures, beside the
     /// measurement: for a fold, the free end's fall, its speed and the support's tension
     /// against Calkin & March's string ([`fold`]); nothing for a release or a mode, whose
@@ -195,5 +208,34 @@ impl std::fmt::Display for Scene {
             }
             Self::Fold { gap } => write!(f, "fold (gap {gap})"),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_fold_starts_at_the_support_s_height_with_its_arms_apart_by_its_gap() {
+        let (gap, n) = (0.02, 200);
+        let angles = Scene::Fold { gap }.initial_angles(n);
+        let tip = super::super::geometry::tip(&angles);
+        // Symmetric U and cut: the free end at the support's height; the rods round the bend
+        // are longer than their chords, so it sits a little further out than the gap.
+        assert!(tip.y.abs() < 1e-12, "{tip:?}");
+        assert!(tip.x > gap && tip.x < 1.02 * gap, "{tip:?}");
+        // Straight down, round the bend, straight up.
+        assert_eq!(angles[0], FRAC_PI_2);
+        assert_eq!(angles[n - 1], -FRAC_PI_2);
+    }
+
+    #[test]
+    fn a_fold_names_its_theory_for_the_viewer_and_a_release_has_none() {
+        let note = Scene::Fold { gap: 0.04 }.theory_note().unwrap();
+        assert!(
+            note.contains("Calkin & March") && note.contains("1.198"),
+            "{note}"
+        );
+        assert!(Scene::Release { angle_deg: 30.0 }.theory_note().is_none());
     }
 }

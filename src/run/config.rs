@@ -219,8 +219,12 @@ impl RunPlan {
 
     /// The parameters as a Markdown document, so that a recording explains itself.
     pub fn markdown(&self) -> String {
+        let theory = self
+            .scene
+            .theory_note()
+            .map_or(String::new(), |note| format!("\n\n{note}"));
         format!(
-            "# rope run\n\n| parameter | value |\n|---|---|\n| method | {} |\n| scene | {}, at rest at the start |\n| segments N | {} |\n| time step k | {:.3e} |\n| duration | {} |\n| frames per time unit | {} |\n\nUnits: L = g = 1, time in sqrt(L/g). y points down. Rope colour: tension, RGB (255, 200·F, 0).",
+            "# rope run\n\n| parameter | value |\n|---|---|\n| method | {} |\n| scene | {}, at rest at the start |\n| segments N | {} |\n| time step k | {:.3e} |\n| duration | {} |\n| frames per time unit | {} |\n\nUnits: L = g = 1, time in sqrt(L/g). y points down. Rope colour: tension, RGB (255, 200·F, 0).{theory}",
             self.method, self.scene, self.segments, self.dt, self.duration, self.log_rate
         )
     }
