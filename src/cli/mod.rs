@@ -34,6 +34,8 @@ Examples:
       three methods side by side on the same frame times
   rope run --tolerance 1e-3 --save chosen.rrd
       method, N and step chosen for a tip error of at most 1e-3
+  rope run --scene fold --gap 0.02 --segments 200 --save fold.rrd
+      a folded chain let go at one end: faster than gravity, against theory
 
 Exit status:
   0    the run ended as asked
