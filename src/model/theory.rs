@@ -41,6 +41,9 @@ impl Comparison {
     /// The string's downward momentum: its rate of change is the weight less the support's
     /// pull, so that its change over a window gives the support's pull averaged over it.
     pub const MOMENTUM: &'static str = "downward momentum";
+    /// The support's pull averaged over the last stretch of time, from the change of the
+    /// downward momentum: smooth where the raw tension jumps as each rod rounds a bend.
+    pub const SUPPORT_PULL: &'static str = "support's pull, averaged";
 
     /// `quantity` measured at `measured`, with no prediction yet.
     pub fn new(quantity: &'static str, measured: f64) -> Self {

@@ -59,7 +59,7 @@ fn plots(lanes: &[RunPlan]) -> Vertical {
             )
             .into(),
             series_view(
-                "Support tension F_0 against (1 + x)/2 + v²/4 (units of m g)",
+                "Support tension F_0, raw and averaged over 0.05, against (1 + x)/2 + v²/4",
                 path::TENSION,
             )
             .into(),

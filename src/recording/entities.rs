@@ -72,6 +72,8 @@ pub mod path {
     pub const TENSION: &str = "theory/support_tension";
     pub const TENSION_MEASURED: &str = "theory/support_tension/measured";
     pub const TENSION_PREDICTED: &str = "theory/support_tension/calkin_march";
+    pub const PULL_MEASURED: &str = "theory/support_tension/pull_measured";
+    pub const PULL_PREDICTED: &str = "theory/support_tension/pull_calkin_march";
     pub const EVENTS: &str = "events";
     pub const PARAMETERS: &str = "parameters";
 }
@@ -97,7 +99,7 @@ pub fn log10_abs(x: f64) -> f64 {
 const LOG_FLOOR: f64 = -16.0;
 
 /// Every time series the recording carries, styled once and filled by each batch.
-pub const SERIES: [Series; 24] = [
+pub const SERIES: [Series; 26] = [
     (path::KINETIC, "kinetic", [230, 120, 30], |f| {
         f.energy.kinetic()
     }),
@@ -210,17 +212,26 @@ pub const SERIES: [Series; 24] = [
         [125, 125, 125],
         |f| theory(f, Comparison::SPEED, Some(1)),
     ),
-    (
-        path::TENSION_MEASURED,
-        "F_0, measured",
-        [200, 150, 0],
-        |f| theory(f, Comparison::SUPPORT_TENSION, None),
-    ),
+    (path::TENSION_MEASURED, "F_0, raw", [200, 150, 0], |f| {
+        theory(f, Comparison::SUPPORT_TENSION, None)
+    }),
     (
         path::TENSION_PREDICTED,
-        "(1 + x)/2 + v²/4 at the measured x",
+        "(1 + x)/2 + v²/4 at x",
         [200, 40, 40],
         |f| theory(f, Comparison::SUPPORT_TENSION, Some(0)),
+    ),
+    (
+        path::PULL_MEASURED,
+        "F_0 averaged (momentum)",
+        [120, 60, 160],
+        |f| theory(f, Comparison::SUPPORT_PULL, None),
+    ),
+    (
+        path::PULL_PREDICTED,
+        "formula, averaged alike",
+        [40, 150, 200],
+        |f| theory(f, Comparison::SUPPORT_PULL, Some(0)),
     ),
 ];
 

@@ -6,6 +6,7 @@ use super::config::RunPlan;
 use super::simulate::{self, Frame, Options, Outcome, Watch};
 use super::sink::FrameSink;
 use super::summary::{Summary, TipSamples};
+use super::theory_figures::PullWindow;
 use crate::error::ConfigError;
 use crate::model::geometry;
 use crate::model::theory::Reading;
@@ -154,6 +155,7 @@ pub(super) fn simulate_and_send(
     };
     let mut samples = TipSamples::new(plan.scene);
     let initial_tip = geometry::tip(&plan.scene.initial_angles(plan.segments));
+    let mut pull = PullWindow::default();
     let cpu = cpu_time::ThreadTime::now();
     let Simulation { method, watch } = simulation;
     let outcome = simulate::run_watched(method, watch, &options, Some(stop), |mut frame| {
@@ -165,6 +167,9 @@ pub(super) fn simulate_and_send(
             support_tension: frame.support_tension,
             momentum: frame.momentum,
         });
+        if let Some(pull) = pull.push(frame.time, &frame.theory) {
+            frame.theory.push(pull);
+        }
         samples.push(frame.time, frame.tip());
         samples.theory.push(frame.time, &frame.theory);
         progress(&frame);

@@ -83,7 +83,9 @@ impl TheoryFigures {
             fall,
             values: comparisons
                 .iter()
-                .filter(|c| c.quantity != Comparison::FALL)
+                .filter(|c| {
+                    c.quantity != Comparison::FALL && c.quantity != Comparison::SUPPORT_PULL
+                })
                 .map(|c| (c.quantity, c.measured, c.first_prediction()))
                 .collect(),
         };
@@ -182,6 +184,48 @@ fn pulled(window: &[&&Kept], momentum: usize) -> (f64, Option<f64>) {
     (1.0 - (m1 - m0) / span, predicted)
 }
 
+/// How long the plotted pull is averaged over, in time units.
+pub const PULL_WINDOW: f64 = 0.05;
+
+/// The support's pull averaged over the last [`PULL_WINDOW`] of time, frame by frame, for
+/// the plot: the weight less the change of the downward momentum over that time, measured
+/// and as predicted (from the prediction of the momentum at the same frames).
+#[derive(Clone, Debug, Default)]
+pub struct PullWindow {
+    /// (time, momentum measured, momentum predicted) of the frames since the window's start.
+    recent: std::collections::VecDeque<(f64, f64, Option<f64>)>,
+}
+
+impl PullWindow {
+    /// Takes a frame's comparisons; returns the pull over the window ending at it, once the
+    /// frames span at least half a window (nothing for a scene without a momentum).
+    pub fn push(&mut self, time: f64, comparisons: &[Comparison]) -> Option<Comparison> {
+        let momentum = comparisons
+            .iter()
+            .find(|c| c.quantity == Comparison::MOMENTUM)?;
+        self.recent
+            .push_back((time, momentum.measured, momentum.first_prediction()));
+        while self.recent.len() > 2 && self.recent[1].0 <= time - PULL_WINDOW {
+            self.recent.pop_front();
+        }
+        let &(t0, m0, p0) = self.recent.front()?;
+        let span = time - t0;
+        if span < PULL_WINDOW / 2.0 {
+            return None;
+        }
+        let pull = |now: f64, then: f64| 1.0 - (now - then) / span;
+        Some(
+            Comparison::new(Comparison::SUPPORT_PULL, pull(momentum.measured, m0)).predicted(
+                "(1 + x)/2 + v²/4, averaged the same way",
+                momentum
+                    .first_prediction()
+                    .zip(p0)
+                    .map(|(p, p0)| pull(p, p0)),
+            ),
+        )
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -209,6 +253,27 @@ mod tests {
             assert!((speed.measured - at.fall).abs() < 1e-12);
             assert!((speed.relative_error.unwrap() + 0.5).abs() < 1e-12);
         }
+    }
+
+    #[test]
+    fn the_pull_is_the_weight_less_the_momentum_gained_over_the_window() {
+        let mut window = PullWindow::default();
+        let mut last = None;
+        // Momentum growing as 0.3 t: a steady pull of 0.7, measured and predicted.
+        for i in 0..=20 {
+            let t = i as f64 * 0.01;
+            let frame = [
+                Comparison::new(Comparison::MOMENTUM, 0.3 * t).predicted("theory", Some(0.3 * t))
+            ];
+            last = window.push(t, &frame);
+            if t < PULL_WINDOW / 2.0 - 1e-12 {
+                assert!(last.is_none(), "t = {t}");
+            }
+        }
+        let pull = last.expect("a pull");
+        assert!((pull.measured - 0.7).abs() < 1e-12);
+        assert!((pull.first_prediction().unwrap() - 0.7).abs() < 1e-12);
+        assert!(window.recent.len() <= 7);
     }
 
     #[test]
