@@ -11,7 +11,7 @@ mod study;
 
 pub use limits::{LimitArgs, MemorySize};
 pub use paths::{check_writable_file, writable_dir};
-pub use run::{Passes, RunArgs};
+pub use run::{DefaultMethod, Passes, RunArgs};
 pub use scene::{SceneArgs, SceneKind};
 pub use study::{CheckSize, LongRunPlan, StudyArgs, StudyPlan, reference_file};
 

@@ -114,6 +114,15 @@ fn parse_passes(text: &str) -> Result<Passes, String> {
     }
 }
 
+/// Why a run's method is a default that the run announces and its summary explains.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DefaultMethod {
+    /// A run left running (endless, looping or served): [`MethodKind::DEFAULT_LASTING`].
+    Lasting,
+    /// A fold: [`MethodKind::FOLD_DEFAULT`].
+    Fold,
+}
+
 impl RunArgs {
     /// Validates the flags into the runs to make, in order.
     pub fn plans(&self) -> Result<Vec<Planned>, ConfigError> {
@@ -137,32 +146,33 @@ impl RunArgs {
     }
 
     /// The method asked for (the first of a list), or the default: for a run that lasts
-    /// (endless, looping or served), one whose energy is kept at every frame.
+    /// (endless, looping or served) and for a fold, one whose energy is kept at every frame.
     pub fn method(&self) -> MethodKind {
         self.method
             .first()
             .copied()
-            .unwrap_or_else(|| match self.fold_default() {
-                true => MethodKind::FOLD_DEFAULT,
-                false => MethodKind::default_for(self.lasts()),
+            .unwrap_or_else(|| match self.default_method() {
+                Some(DefaultMethod::Fold) => MethodKind::FOLD_DEFAULT,
+                _ => MethodKind::default_for(self.lasts()),
             })
     }
 
-    /// Whether the method is the fold's default: none named, and the scene a fold.
-    pub fn fold_default(&self) -> bool {
-        self.method.is_empty() && self.scene.scene == SceneKind::Fold
+    /// Why the method is a default the run announces, if it is: none named, and a fold, or
+    /// none chosen by `--tolerance` for a run that [`lasts`](Self::lasts).
+    pub fn default_method(&self) -> Option<DefaultMethod> {
+        if !self.method.is_empty() {
+            return None;
+        }
+        if self.scene.scene == SceneKind::Fold {
+            return Some(DefaultMethod::Fold);
+        }
+        (self.tolerance.is_none() && self.lasts()).then_some(DefaultMethod::Lasting)
     }
 
     /// Whether the run is meant to be left running: endless (`--duration inf`), looping, or
     /// served to viewers who join at any time.
     pub fn lasts(&self) -> bool {
         self.endless() || self.output.served_at().is_some()
-    }
-
-    /// Whether the method is the default for a run left running: none named, none chosen
-    /// by `--tolerance`, and the run [`lasts`](Self::lasts).
-    pub fn lasting_default(&self) -> bool {
-        self.method.is_empty() && self.tolerance.is_none() && self.lasts() && !self.fold_default()
     }
 
     /// Whether the run never ends by itself: `--duration inf`, or `--loop` until Ctrl-C.

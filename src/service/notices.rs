@@ -3,6 +3,7 @@
 //! them ([`Terminal`]); a test collects them ([`Collected`]) and asks which were told, with
 //! no stderr to parse.
 
+use crate::cli::DefaultMethod;
 use crate::methods::MethodKind;
 use crate::model::Scene;
 use crate::model::scene::FOLD_RODS_ACROSS_GAP;
@@ -142,10 +143,8 @@ pub struct Asked {
     pub tolerance: Option<f64>,
     /// Whether `--dt` was given.
     pub dt_given: bool,
-    /// The method of a run left running, when it is the default (none named or chosen).
-    pub lasting_default: Option<MethodKind>,
-    /// The method of a fold, when it is the default (none named).
-    pub fold_default: Option<MethodKind>,
+    /// The method, when it is a default the run announces, and why it is.
+    pub default_method: Option<(MethodKind, DefaultMethod)>,
 }
 
 /// What was chosen for the user: the tolerance rule's choice, a default step, a default
@@ -254,26 +253,40 @@ pub fn announce(asked: &Asked, plans: &[Planned]) -> Vec<Notice> {
             notices.extend(blow_up_warning(lane, !others.is_empty()));
         }
     }
-    if let Some(method) = asked.fold_default {
-        notices.push(Notice::new(
-            Topic::LastingDefault,
-            format!(
-                "rope: the fold uses the {method} method: {} (--method to choose another)",
-                MethodKind::FOLD_DEFAULT_BECAUSE
-            ),
-        ));
-    }
     // (--tolerance with an endless run was refused before.)
-    if let Some(method) = asked.lasting_default {
-        notices.push(Notice::new(
-            Topic::LastingDefault,
-            format!(
-                "rope: a run left running (endless, looping or served) uses the {method} method: {} (the report's scheme blows up after tens of time units, the chain's energy drifts down, rattle's jumps at violent snaps; --method to choose another)",
-                MethodKind::DEFAULT_LASTING_BECAUSE
-            ),
-        ));
+    if let Some((method, why)) = asked.default_method {
+        notices.push(default_method(method, why));
     }
     notices
+}
+
+/// The method a run uses by default, and why, as the run announces it.
+fn default_method(method: MethodKind, why: DefaultMethod) -> Notice {
+    let text = match why {
+        DefaultMethod::Lasting => format!(
+            "rope: a run left running (endless, looping or served) uses the {method} method: {} (the report's scheme blows up after tens of time units, the chain's energy drifts down, rattle's jumps at violent snaps; --method to choose another)",
+            MethodKind::DEFAULT_LASTING_BECAUSE
+        ),
+        DefaultMethod::Fold => format!(
+            "rope: the fold uses the {method} method: {} (--method to choose another)",
+            MethodKind::FOLD_DEFAULT_BECAUSE
+        ),
+    };
+    Notice::new(Topic::LastingDefault, text)
+}
+
+/// The summary's `method_chosen_because` for a method that is a default.
+pub fn default_method_because(method: MethodKind, why: DefaultMethod) -> String {
+    match why {
+        DefaultMethod::Lasting => format!(
+            "{method}, the default for a run left running (endless, looping or served): {}",
+            MethodKind::DEFAULT_LASTING_BECAUSE
+        ),
+        DefaultMethod::Fold => format!(
+            "{method}, the fold's default: {}",
+            MethodKind::FOLD_DEFAULT_BECAUSE
+        ),
+    }
 }
 
 /// A step as the user reads it: in four significant digits, and as 1/m where it is the

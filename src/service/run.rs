@@ -38,8 +38,7 @@ pub fn run(args: &RunArgs, session: &Session) -> Result<Outcome, ServiceError> {
     let asked = notices::Asked {
         tolerance: args.tolerance,
         dt_given: args.dt.is_some(),
-        lasting_default: args.lasting_default().then(|| args.method()),
-        fold_default: args.fold_default().then(|| args.method()),
+        default_method: args.default_method().map(|why| (args.method(), why)),
     };
     notices::announce(&asked, &plans).into_iter().for_each(tell);
     if let Some(path) = args.summary.as_deref() {
@@ -213,19 +212,9 @@ fn run_passes(
                     basis.meaning()
                 ));
             }
-            if args.lasting_default() {
-                summary.method_chosen_because = Some(format!(
-                    "{}, the default for a run left running (endless, looping or served): {}",
-                    summary.method,
-                    MethodKind::DEFAULT_LASTING_BECAUSE
-                ));
-            }
-            if args.fold_default() {
-                summary.method_chosen_because = Some(format!(
-                    "{}, the fold's default: {}",
-                    summary.method,
-                    MethodKind::FOLD_DEFAULT_BECAUSE
-                ));
+            if let Some(why) = args.default_method() {
+                summary.method_chosen_because =
+                    Some(notices::default_method_because(summary.method, why));
             }
             if several {
                 // Each run of several says all it has as it ends; the last is not repeated.
