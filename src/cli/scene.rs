@@ -52,21 +52,24 @@ impl SceneArgs {
     /// The scenes the flags describe, in the order given. A flag of the other scene is
     /// refused, naming it, rather than silently ignored.
     pub fn scenes(&self) -> Result<Vec<Scene>, ConfigError> {
-        let foreign = |flag: &'static str| ConfigError::ForeignSceneFlag {
-            flag,
-            scene: self.scene.name(),
-        };
-        if self.scene != SceneKind::Fold && self.gap.is_some() {
-            return Err(foreign("gap"));
+        // Each scene's own flags; one given to another scene is named, the first in this order.
+        let given = [
+            ("gap", self.gap.is_some(), SceneKind::Fold),
+            ("angle", !self.angle.is_empty(), SceneKind::Release),
+            ("mode-number", !self.mode_number.is_empty(), SceneKind::Mode),
+            ("amplitude", self.amplitude.is_some(), SceneKind::Mode),
+        ];
+        if let Some(&(flag, ..)) = given
+            .iter()
+            .find(|&&(_, is_given, owner)| is_given && owner != self.scene)
+        {
+            return Err(ConfigError::ForeignSceneFlag {
+                flag,
+                scene: self.scene.name(),
+            });
         }
         match self.scene {
             SceneKind::Release => {
-                if !self.mode_number.is_empty() {
-                    return Err(foreign("mode-number"));
-                }
-                if self.amplitude.is_some() {
-                    return Err(foreign("amplitude"));
-                }
                 let angles = if self.angle.is_empty() {
                     &[Self::DEFAULT_ANGLE][..]
                 } else {
@@ -78,9 +81,6 @@ impl SceneArgs {
                     .collect())
             }
             SceneKind::Mode => {
-                if !self.angle.is_empty() {
-                    return Err(foreign("angle"));
-                }
                 let numbers = if self.mode_number.is_empty() {
                     &[Self::DEFAULT_MODE][..]
                 } else {
@@ -92,20 +92,9 @@ impl SceneArgs {
                     .map(|&number| Scene::Mode { number, amplitude })
                     .collect())
             }
-            SceneKind::Fold => {
-                if !self.angle.is_empty() {
-                    return Err(foreign("angle"));
-                }
-                if !self.mode_number.is_empty() {
-                    return Err(foreign("mode-number"));
-                }
-                if self.amplitude.is_some() {
-                    return Err(foreign("amplitude"));
-                }
-                Ok(vec![Scene::Fold {
-                    gap: self.gap.unwrap_or(Self::DEFAULT_GAP),
-                }])
-            }
+            SceneKind::Fold => Ok(vec![Scene::Fold {
+                gap: self.gap.unwrap_or(Self::DEFAULT_GAP),
+            }]),
         }
     }
 
