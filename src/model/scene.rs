@@ -121,12 +121,13 @@ impl Scene {
         match *self {
             Self::Fold { .. } => {
                 let x = reading.tip.y - reading.initial_tip.y;
-                let falling = reading.time < fold::time_to_fall(1.0) && x < 0.999;
-                let before_snap = falling.then_some(x.max(0.0));
+                // Calkin & March's fall at this time: 1 once their chain hangs straight.
+                let theirs = fold::fall_at(reading.time);
+                let before_snap = (theirs < 1.0 && x < 0.999).then_some(x.max(0.0));
                 let at_fall = |f: fn(f64) -> f64| before_snap.map(f);
                 vec![
                     Comparison::new(Comparison::FALL, x)
-                        .predicted("Calkin–March", Some(fold::fall_at(reading.time)))
+                        .predicted("Calkin–March", Some(theirs))
                         .predicted("free fall", Some(reading.time * reading.time / 2.0)),
                     Comparison::new(Comparison::SPEED, reading.tip_velocity.norm())
                         .predicted("Calkin–March at this fall", at_fall(fold::speed))

@@ -167,11 +167,12 @@ pub(super) fn simulate_and_send(
             support_tension: frame.support_tension,
             momentum: frame.momentum,
         });
+        samples.push(frame.time, frame.tip());
+        samples.theory.push(frame.time, &frame.theory);
+        // The plot's averaged pull, after the summary's reading (which averages its own).
         if let Some(pull) = pull.push(frame.time, &frame.theory) {
             frame.theory.push(pull);
         }
-        samples.push(frame.time, frame.tip());
-        samples.theory.push(frame.time, &frame.theory);
         progress(&frame);
         if let Some(speed) = plan.realtime {
             pace(started, frame.time / speed, stop);

@@ -83,9 +83,7 @@ impl TheoryFigures {
             fall,
             values: comparisons
                 .iter()
-                .filter(|c| {
-                    c.quantity != Comparison::FALL && c.quantity != Comparison::SUPPORT_PULL
-                })
+                .filter(|c| c.quantity != Comparison::FALL)
                 .map(|c| (c.quantity, c.measured, c.first_prediction()))
                 .collect(),
         };
