@@ -482,9 +482,14 @@ impl Summary {
                     tau / period,
                     tau / theory
                 );
-                if difference.abs() > PERIOD_NOTE_PERCENT {
+                if difference.abs() > PERIOD_NOTE_PERCENT && amplitude.abs() > 0.01 {
                     text += &format!(
                         "  the theory is for small amplitudes: at a tip amplitude of {amplitude} the swing is large enough to shift the period (a smaller --amplitude, e.g. 0.01, comes closer)\n"
+                    );
+                } else if difference.abs() > PERIOD_NOTE_PERCENT {
+                    text += &format!(
+                        "  at a tip amplitude of {amplitude} the swing is small enough for the theory: the difference is the {} rods' own (the rods start on the string's mode sampled at their centres); more --segments come closer\n",
+                        self.segments
                     );
                 }
             }
