@@ -121,6 +121,10 @@ pub enum ConfigError {
         "scene = fold: the seed scheme cannot carry the folded chain: its equations move each angle by the tension's pull, and the fold's free arm falls with no tension at all: it diverges before t = 0.6 at any step (docs/physics.md), so no smaller --dt helps; use --method midpoint (which keeps the energy through the snap), chain or rattle"
     )]
     SeedFold,
+    #[error(
+        "scene = {0}: graded rods are measured on releases only (a release is straight, so every rod starts at its angle whatever its length); start them from a release"
+    )]
+    GradedScene(&'static str),
     #[error("{flag}: a study is of one scene, {count} given; run one study per scene")]
     StudyScenes { flag: &'static str, count: usize },
     #[error("duration = {0}: a study's runs must end, at a finite number of time units > 0")]

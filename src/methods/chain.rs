@@ -121,6 +121,9 @@ impl Chain {
         dt: f64,
         exponent: f64,
     ) -> Result<Self, ConfigError> {
+        if !matches!(scene, Scene::Release { .. }) {
+            return Err(ConfigError::GradedScene(scene.name()));
+        }
         let mut chain = Self::new(scene, segments, dt)?;
         let n = segments as f64;
         let edge = |i: usize| 1.0 - (1.0 - i as f64 / n).powf(exponent);
