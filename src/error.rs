@@ -122,6 +122,10 @@ pub enum ConfigError {
     )]
     SeedFold,
     #[error(
+        "scene = shake: the seed scheme cannot carry a moving support: its support condition (11) holds the first point still, and its angle equations have no term for the support's acceleration; use --method midpoint (which keeps the energy balance E − E₀ − W exact), chain or rattle"
+    )]
+    SeedShake,
+    #[error(
         "scene = {0}: graded rods are measured on releases only (a release is straight, so every rod starts at its angle whatever its length); start them from a release"
     )]
     GradedScene(&'static str),
@@ -174,7 +178,7 @@ pub enum ConfigError {
     #[error("reference = {path}: {reason}; write one with `rope study --reference-only --out DIR`")]
     ReferenceUnreadable { path: String, reason: String },
     #[error(
-        "{flag}: the {scene} scene does not take --{flag} (it would be ignored); the release scene takes --angle, the mode scene --mode-number and --amplitude, the fold scene --gap (choose with --scene)"
+        "{flag}: the {scene} scene does not take --{flag} (it would be ignored); the release scene takes --angle, the mode scene --mode-number and --amplitude, the fold scene --gap, the shake scene --amplitude, --frequency or --sweep, and --from (choose with --scene)"
     )]
     ForeignSceneFlag {
         flag: &'static str,
@@ -200,9 +204,33 @@ pub enum ConfigError {
     )]
     FoldGap(f64),
     #[error(
-        "tolerance: --tolerance does not serve the {0} scene: its error models and atlas are measured on releases and modes, and pilots coarse enough to be cheap cannot draw the fold's bend (two rods or more across the gap); choose --method midpoint and --segments at least 2 / gap instead (for example --segments 100 for --gap 0.02)"
+        "tolerance: --tolerance does not serve the {scene} scene: its error models and atlas are measured on releases and modes, {why}"
     )]
-    ToleranceScene(&'static str),
+    ToleranceScene {
+        scene: &'static str,
+        why: &'static str,
+    },
+    #[error(
+        "amplitude = {0}: the shaken support's amplitude must be more than 0 and at most 0.05 string lengths (the theory it is held against is linear); try 0.001 to 0.01"
+    )]
+    ShakeAmplitude(f64),
+    #[error(
+        "frequency = {0}: the shaking frequency must be more than 0 and at most 20 radians per time unit (g = L = 1; the first resonances are 1.2024, 2.7600 and 4.3269); try 0.6 or 2.0"
+    )]
+    ShakeFrequency(f64),
+    #[error(
+        "frequency = {frequency}: a steady start there asks the free end to swing {tip:.3} string lengths (A/|J₀(2Ω)| with A = {amplitude}), too near the resonance ω = {resonance:.4} for the linear steady state it starts on (at most 0.2); start from rest (--from rest), which shows the resonance grow, or move Ω away from {resonance:.4}, or lower --amplitude"
+    )]
+    SteadyNearResonance {
+        frequency: f64,
+        amplitude: f64,
+        tip: f64,
+        resonance: f64,
+    },
+    #[error(
+        "sweep = {0}: give two frequencies and optionally a count, Ω₁..Ω₂ or Ω₁..Ω₂:count, with 0 < Ω₁ < Ω₂ ≤ 20 and a count from 2 to 2000 (for example 0.2..5:120)"
+    )]
+    Sweep(String),
 }
 
 /// Why and when a run stopped producing trustworthy numbers. No value computed after it is

@@ -265,3 +265,79 @@ fn seed_scheme_refuses_the_fold_saying_why_and_what_works() {
         assert!(config(method, fold, 100, None).is_ok(), "{method}");
     }
 }
+
+#[test]
+fn a_shake_of_no_negative_or_too_large_amplitude_or_frequency() {
+    use rope::model::ShakeStart;
+    let shake = |amplitude, frequency, start| Scene::Shake {
+        amplitude,
+        frequency,
+        start,
+    };
+    for amplitude in [0.0, -1e-3, f64::NAN, 0.06] {
+        let err = config(
+            MethodKind::Midpoint,
+            shake(amplitude, 2.0, ShakeStart::Steady),
+            100,
+            None,
+        )
+        .unwrap_err();
+        assert!(
+            matches!(err, ConfigError::ShakeAmplitude(_)),
+            "{amplitude}: {err}"
+        );
+        assert!(err.to_string().starts_with("amplitude"), "{err}");
+    }
+    for frequency in [0.0, -2.0, f64::NAN, f64::INFINITY, 21.0] {
+        let err = config(
+            MethodKind::Midpoint,
+            shake(1e-3, frequency, ShakeStart::Rest),
+            100,
+            None,
+        )
+        .unwrap_err();
+        assert!(
+            matches!(err, ConfigError::ShakeFrequency(_)),
+            "{frequency}: {err}"
+        );
+        assert!(err.to_string().starts_with("frequency"), "{err}");
+    }
+    // On a resonance the steady state is unbounded: a steady start is refused, naming the
+    // resonance and the start that shows it; from rest it runs.
+    let err = config(
+        MethodKind::Midpoint,
+        shake(1e-2, 1.2024, ShakeStart::Steady),
+        100,
+        None,
+    )
+    .unwrap_err();
+    let text = err.to_string();
+    assert!(
+        text.starts_with("frequency") && text.contains("1.2024") && text.contains("--from rest"),
+        "{text}"
+    );
+    assert!(
+        config(
+            MethodKind::Midpoint,
+            shake(1e-2, 1.2024, ShakeStart::Rest),
+            100,
+            None
+        )
+        .is_ok()
+    );
+    // Every rod method carries a moving support; the report's scheme refuses it.
+    for method in [MethodKind::Chain, MethodKind::Rattle, MethodKind::Midpoint] {
+        assert!(
+            config(method, shake(1e-3, 2.0, ShakeStart::Steady), 100, None).is_ok(),
+            "{method}"
+        );
+    }
+    let err = config(
+        MethodKind::Seed,
+        shake(1e-3, 2.0, ShakeStart::Steady),
+        100,
+        None,
+    )
+    .unwrap_err();
+    assert_eq!(err, ConfigError::SeedShake);
+}

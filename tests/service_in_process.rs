@@ -159,6 +159,38 @@ fn input_that_cannot_run_comes_back_as_bad_input_naming_the_flag() {
         Err(ServiceError::BadInput(text)) => assert!(text.starts_with("gap"), "{text}"),
         other => panic!("{other:?}"),
     }
+    for (flags, named) in [
+        (&["--frequency", "2"][..], "frequency"),
+        (&["--scene", "fold", "--from", "rest"][..], "from"),
+        (&["--scene", "mode", "--sweep", "0.2..5"][..], "sweep"),
+    ] {
+        match run::run(&run_args(flags), &session) {
+            Err(ServiceError::BadInput(text)) => assert!(text.starts_with(named), "{text}"),
+            other => panic!("{flags:?}: {other:?}"),
+        }
+    }
+    // A sweep that is not Ω₁..Ω₂[:count] with 0 < Ω₁ < Ω₂ ≤ 20 says what it takes.
+    for sweep in [
+        "5..0.2", "0..5", "0.2..5:1", "0.2-5", "0.2..30", "a..b", "0.2..5:x",
+    ] {
+        match run::run(&run_args(&["--scene", "shake", "--sweep", sweep]), &session) {
+            Err(ServiceError::BadInput(text)) => {
+                assert!(
+                    text.starts_with("sweep") && text.contains("0.2..5:120"),
+                    "{text}"
+                )
+            }
+            other => panic!("{sweep}: {other:?}"),
+        }
+    }
+    // --tolerance does not serve the shake either.
+    match run::run(
+        &run_args(&["--scene", "shake", "--tolerance", "1e-3"]),
+        &session,
+    ) {
+        Err(ServiceError::BadInput(text)) => assert!(text.starts_with("tolerance"), "{text}"),
+        other => panic!("{other:?}"),
+    }
 }
 
 #[test]

@@ -54,8 +54,9 @@ pub struct RunArgs {
     pub tolerance: Option<f64>,
 
     /// Numerical method [default: the report's (seed); for a run left running (--duration
-    /// inf, --loop, --serve-grpc, --web) and for the fold scene, the one that keeps the energy
-    /// at every frame (midpoint), as printed at the start]. A list (e.g. seed,chain,rattle)
+    /// inf, --loop, --serve-grpc, --web) and for the fold and shake scenes, the one that keeps
+    /// the energy (or its balance with the support's work) at every frame (midpoint), as
+    /// printed at the start]. A list (e.g. seed,chain,rattle)
     /// runs the methods side by side on the same frame times, in one recording: each at
     /// --segments and its own default step (or --dt), brought down so that 30 instants a
     /// time unit fall on its steps (whatever --log-rate).
@@ -64,7 +65,8 @@ pub struct RunArgs {
 
     /// Frames logged per time unit [default: 60; for several methods side by side, which
     /// send a frame per method, 30, also the most: their frames fall on 30 shared instants a
-    /// time unit, nearest each frame's time]. Viewers of a served, endless or looping run get each
+    /// time unit, nearest each frame's time; for a --sweep, whose many runs would make a
+    /// recording of gigabytes, 10 (each run's largest swing is read at its frames)]. Viewers of a served, endless or looping run get each
     /// frame as a live picture that replaces itself, and a history at --history-rate.
     #[arg(long, allow_negative_numbers = true, allow_hyphen_values = true)]
     pub log_rate: Option<f64>,
@@ -121,6 +123,8 @@ pub enum DefaultMethod {
     Lasting,
     /// A fold: [`MethodKind::FOLD_DEFAULT`].
     Fold,
+    /// A shake: [`MethodKind::SHAKE_DEFAULT`].
+    Shake,
 }
 
 impl RunArgs {
@@ -153,6 +157,7 @@ impl RunArgs {
             .copied()
             .unwrap_or_else(|| match self.default_method() {
                 Some(DefaultMethod::Fold) => MethodKind::FOLD_DEFAULT,
+                Some(DefaultMethod::Shake) => MethodKind::SHAKE_DEFAULT,
                 _ => MethodKind::default_for(self.lasts()),
             })
     }
@@ -163,8 +168,10 @@ impl RunArgs {
         if !self.method.is_empty() {
             return None;
         }
-        if self.scene.scene == SceneKind::Fold {
-            return Some(DefaultMethod::Fold);
+        match self.scene.scene {
+            SceneKind::Fold => return Some(DefaultMethod::Fold),
+            SceneKind::Shake => return Some(DefaultMethod::Shake),
+            SceneKind::Release | SceneKind::Mode => {}
         }
         (self.tolerance.is_none() && self.lasts()).then_some(DefaultMethod::Lasting)
     }
@@ -185,9 +192,17 @@ impl RunArgs {
     /// history, whatever the frame rate. The steps never depend on it (side by side they
     /// are brought onto a fixed grid, `SHARED_FRAME_GRID`).
     pub fn log_rate(&self) -> f64 {
-        self.log_rate
-            .unwrap_or(if self.compares() { 30.0 } else { 60.0 })
+        self.log_rate.unwrap_or(if self.compares() {
+            30.0
+        } else if self.scene.sweep.is_some() {
+            Self::SWEEP_LOG_RATE
+        } else {
+            60.0
+        })
     }
+
+    /// Frames per time unit of a sweep when --log-rate is not given.
+    pub const SWEEP_LOG_RATE: f64 = 10.0;
 
     /// Whether several methods are to run side by side.
     pub fn compares(&self) -> bool {

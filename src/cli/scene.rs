@@ -2,7 +2,7 @@
 //! angle or mode.
 
 use crate::error::ConfigError;
-use crate::model::Scene;
+use crate::model::{Scene, ShakeStart};
 
 /// The scene flags shared by `run` and `study`.
 #[derive(Debug, clap::Args)]
@@ -27,9 +27,33 @@ pub struct SceneArgs {
     #[arg(long, value_delimiter = ',')]
     pub mode_number: Vec<u32>,
 
-    /// Tip displacement of the `mode` scene, in string lengths (|A| ≤ 0.2) [default: 0.05].
+    /// Tip displacement of the `mode` scene, in string lengths (|A| ≤ 0.2) [default: 0.05];
+    /// for the `shake` scene, the support's sideways amplitude (0 < A ≤ 0.05) [default:
+    /// 0.01].
     #[arg(long, allow_negative_numbers = true, allow_hyphen_values = true)]
     pub amplitude: Option<f64>,
+
+    /// How fast the `shake` scene's support moves, Ω in x_s = A sin Ωt (radians per time
+    /// unit, g = L = 1; 0 < Ω ≤ 20) [default: 2.0]. Resonances at 1.2024, 2.7600, 4.3269, …;
+    /// `rope run` takes a list, as for --angle.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_negative_numbers = true,
+        allow_hyphen_values = true
+    )]
+    pub frequency: Vec<f64>,
+
+    /// A sweep of the `shake` scene's frequency, Ω₁..Ω₂ or Ω₁..Ω₂:count (count frequencies
+    /// evenly spaced, ends included [default: 100]), each run in turn: e.g. 0.2..5:120 with
+    /// --from rest shows the resonances appear one after another.
+    #[arg(long, conflicts_with = "frequency")]
+    pub sweep: Option<String>,
+
+    /// How the `shake` scene starts: on the linear steady state (periodic from the first
+    /// frame), or hanging at rest.
+    #[arg(long = "from", value_enum)]
+    pub start: Option<StartKind>,
 
     /// How far apart the two ends of the `fold` scene start, in string lengths (0 < d < 2/π)
     /// [default: 0.04]. Its bend is a half circle of this diameter: give --segments at least
@@ -48,20 +72,39 @@ impl SceneArgs {
     /// The fold's gap when none is given: four rods across it at the default N = 100, and
     /// narrow enough for Calkin & March's limit of no gap.
     pub const DEFAULT_GAP: f64 = 0.04;
+    /// The shaken support's amplitude when none is given: the free end then swings a few
+    /// hundredths at the default frequency, small enough for the linear theory, large enough
+    /// to see.
+    pub const DEFAULT_SHAKE_AMPLITUDE: f64 = 0.01;
+    /// The shaking frequency when none is given: between the first two resonances.
+    pub const DEFAULT_FREQUENCY: f64 = 2.0;
+    /// Frequencies in a sweep when the count is not given.
+    pub const DEFAULT_SWEEP_COUNT: usize = 100;
 
     /// The scenes the flags describe, in the order given. A flag of the other scene is
     /// refused, naming it, rather than silently ignored.
     pub fn scenes(&self) -> Result<Vec<Scene>, ConfigError> {
         // Each scene's own flags; one given to another scene is named, the first in this order.
-        let given = [
-            ("gap", self.gap.is_some(), SceneKind::Fold),
-            ("angle", !self.angle.is_empty(), SceneKind::Release),
-            ("mode-number", !self.mode_number.is_empty(), SceneKind::Mode),
-            ("amplitude", self.amplitude.is_some(), SceneKind::Mode),
+        let given: [(_, _, &[SceneKind]); 7] = [
+            ("gap", self.gap.is_some(), &[SceneKind::Fold]),
+            ("angle", !self.angle.is_empty(), &[SceneKind::Release]),
+            (
+                "mode-number",
+                !self.mode_number.is_empty(),
+                &[SceneKind::Mode],
+            ),
+            (
+                "amplitude",
+                self.amplitude.is_some(),
+                &[SceneKind::Mode, SceneKind::Shake],
+            ),
+            ("frequency", !self.frequency.is_empty(), &[SceneKind::Shake]),
+            ("sweep", self.sweep.is_some(), &[SceneKind::Shake]),
+            ("from", self.start.is_some(), &[SceneKind::Shake]),
         ];
         if let Some(&(flag, ..)) = given
             .iter()
-            .find(|&&(_, is_given, owner)| is_given && owner != self.scene)
+            .find(|&&(_, is_given, owners)| is_given && !owners.contains(&self.scene))
         {
             return Err(ConfigError::ForeignSceneFlag {
                 flag,
@@ -95,6 +138,26 @@ impl SceneArgs {
             SceneKind::Fold => Ok(vec![Scene::Fold {
                 gap: self.gap.unwrap_or(Self::DEFAULT_GAP),
             }]),
+            SceneKind::Shake => {
+                let frequencies = match &self.sweep {
+                    Some(sweep) => parse_sweep(sweep)?,
+                    None if self.frequency.is_empty() => vec![Self::DEFAULT_FREQUENCY],
+                    None => self.frequency.clone(),
+                };
+                let amplitude = self.amplitude.unwrap_or(Self::DEFAULT_SHAKE_AMPLITUDE);
+                let start = match self.start.unwrap_or(StartKind::Steady) {
+                    StartKind::Steady => ShakeStart::Steady,
+                    StartKind::Rest => ShakeStart::Rest,
+                };
+                Ok(frequencies
+                    .into_iter()
+                    .map(|frequency| Scene::Shake {
+                        amplitude,
+                        frequency,
+                        start,
+                    })
+                    .collect())
+            }
         }
     }
 
@@ -110,6 +173,7 @@ impl SceneArgs {
                     SceneKind::Release => "angle",
                     SceneKind::Mode => "mode-number",
                     SceneKind::Fold => "gap",
+                    SceneKind::Shake => "frequency",
                 },
                 count: scenes.len(),
             }),
@@ -127,6 +191,39 @@ pub enum SceneKind {
     /// Folded in a U with both ends at the support's height, --gap apart; the free end is
     /// let go and falls faster than gravity (Calkin & March).
     Fold,
+    /// Hanging, its support shaken sideways as --amplitude sin(--frequency t): the string's
+    /// modes resonate one after another as the frequency sweeps past them.
+    Shake,
+}
+
+/// How the `shake` scene starts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum StartKind {
+    /// On the linear steady state: periodic from the first frame.
+    Steady,
+    /// Hanging at rest: the steady state and the free modes together (at a resonance, the
+    /// amplitude grows in proportion to time).
+    Rest,
+}
+
+/// The frequencies of `--sweep Ω₁..Ω₂[:count]`, evenly spaced, both ends included.
+fn parse_sweep(text: &str) -> Result<Vec<f64>, ConfigError> {
+    let bad = || ConfigError::Sweep(text.to_string());
+    let (range, count) = match text.split_once(':') {
+        Some((range, count)) => (range, count.trim().parse::<usize>().map_err(|_| bad())?),
+        None => (text, SceneArgs::DEFAULT_SWEEP_COUNT),
+    };
+    let (low, high) = range.split_once("..").ok_or_else(bad)?;
+    let (low, high): (f64, f64) = (
+        low.trim().parse().map_err(|_| bad())?,
+        high.trim().parse().map_err(|_| bad())?,
+    );
+    let max = crate::model::scene::SHAKE_FREQUENCY_MAX;
+    if !(low > 0.0 && low < high && high <= max && (2..=2000).contains(&count)) {
+        return Err(bad());
+    }
+    let spacing = (high - low) / (count - 1) as f64;
+    Ok((0..count).map(|i| low + i as f64 * spacing).collect())
 }
 
 impl SceneKind {
@@ -136,6 +233,7 @@ impl SceneKind {
             Self::Release => "release",
             Self::Mode => "mode",
             Self::Fold => "fold",
+            Self::Shake => "shake",
         }
     }
 }

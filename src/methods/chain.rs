@@ -11,7 +11,8 @@
 //! * joint j ≥ 1:     (3P_{j−1} − I) f_{j−1} + (2I + 3P_{j−1} + 3P_j) f_j + (3P_j − I) f_{j+1}
 //!   = −(m h/2) (φ̇_{j−1}² t_{j−1} + φ̇_j² t_j)
 //!
-//! solved by block Thomas in O(N); then φ̈_i = −(6/(m h)) n_i · (f_i + f_{i+1}). Time: classical
+//! (ŷ: gravity; in the frame of a shaken support, (−ẍ_s(t), 1), evaluated at each RK4 stage's
+//! time) solved by block Thomas in O(N); then φ̈_i = −(6/(m h)) n_i · (f_i + f_{i+1}). Time: classical
 //! RK4 in (φ, φ̇). No division by the tension anywhere, so it starts from the horizontal;
 //! inextensibility is exact by construction; the rods converge to the continuum at O(h²).
 
@@ -19,8 +20,8 @@ use super::error_model::ErrorModel;
 use super::joint_forces::ForceSolver;
 use super::method::{self, Descriptor, Method, Observation};
 use crate::error::{ConfigError, Diverged};
-use crate::model::Scene;
 use crate::model::geometry::{self, Energy};
+use crate::model::{Scene, SupportLedger, SupportNow};
 
 /// Substep bounds: k_sub ≤ C_F h / sqrt(F_max) (measured stable up to C_F ≈ 0.6 at N = 100)
 /// and k_sub |φ̇|_max ≤ C_ω, at the default step and above; a finer step tightens both in
@@ -82,6 +83,8 @@ pub struct Chain {
     support_tension: f64,
     /// Rod lengths where they are graded ([`Chain::graded`]); `None` for N equal rods.
     length: Option<Vec<f64>>,
+    /// The support's motion and the work it has done.
+    ledger: SupportLedger,
 }
 
 impl Chain {
@@ -91,12 +94,14 @@ impl Chain {
         method::validate_segments(&DESCRIPTOR, segments)?;
         method::validate_dt(dt)?;
         let n = segments;
+        let (phi, omega) = (scene.initial_angles(n), scene.initial_rates(n));
+        let ledger = SupportLedger::new(scene.support(), geometry::momentum(&phi, &omega).x);
         let mut chain = Self {
             k: dt,
             refinement: DESCRIPTOR.refinement(n, dt),
             steps: 0,
-            phi: scene.initial_angles(n),
-            omega: vec![0.0; n],
+            phi,
+            omega,
             stage_phi: vec![0.0; n],
             stage_omega: vec![0.0; n],
             sum_phi: vec![0.0; n],
@@ -105,6 +110,7 @@ impl Chain {
             solver: ForceSolver::new(n),
             support_tension: 0.0,
             length: None,
+            ledger,
         };
         chain.evaluate_now();
         Ok(chain)
@@ -159,6 +165,7 @@ impl Chain {
     /// Accelerations and forces at the current state; returns the largest joint force and
     /// the largest |φ̇|.
     fn evaluate_now(&mut self) -> (f64, f64) {
+        self.solver.gravity = self.ledger.gravity(self.time());
         let extremes = Self::solve(
             &mut self.solver,
             self.length.as_deref(),
@@ -199,9 +206,9 @@ impl Chain {
         }
     }
 
-    /// One classical RK4 step of size `dt` from (φ, φ̇), with stage-1 accelerations already
-    /// in `self.alpha`.
-    fn rk4(&mut self, dt: f64) {
+    /// One classical RK4 step of size `dt` from (φ, φ̇) at time `start`, with stage-1
+    /// accelerations already in `self.alpha`.
+    fn rk4(&mut self, start: f64, dt: f64) {
         let n = self.phi.len();
         for i in 0..n {
             self.sum_phi[i] = self.omega[i];
@@ -209,7 +216,9 @@ impl Chain {
             self.stage_phi[i] = self.phi[i] + 0.5 * dt * self.omega[i];
             self.stage_omega[i] = self.omega[i] + 0.5 * dt * self.alpha[i];
         }
-        for (weight, advance) in [(2.0, 0.5 * dt), (2.0, dt), (1.0, 0.0)] {
+        // Each stage's time, then its weight and how far the next stage advances.
+        for (at, weight, advance) in [(0.5, 2.0, 0.5 * dt), (0.5, 2.0, dt), (1.0, 1.0, 0.0)] {
+            self.solver.gravity = self.ledger.gravity(start + at * dt);
             Self::solve(
                 &mut self.solver,
                 self.length.as_deref(),
@@ -257,8 +266,11 @@ impl Method for Chain {
         let (force, rate) = self.evaluate_now();
         let substeps = self.substeps(force, rate);
         let dt = k / substeps as f64;
+        let moves = self.ledger.moves();
         for sub in 0..substeps {
+            let start = self.time() + sub as f64 * dt;
             if sub > 0 {
+                self.solver.gravity = self.ledger.gravity(start);
                 Self::solve(
                     &mut self.solver,
                     self.length.as_deref(),
@@ -267,7 +279,16 @@ impl Method for Chain {
                     &mut self.alpha,
                 );
             }
-            self.rk4(dt);
+            let before = if moves {
+                geometry::first_moment(&self.phi).x
+            } else {
+                0.0
+            };
+            self.rk4(start, dt);
+            if moves {
+                let moved = geometry::first_moment(&self.phi).x - before;
+                self.ledger.step(start, dt, moved);
+            }
         }
         let check: f64 = self.phi.iter().chain(&self.omega).sum();
         if !(check.is_finite() && self.support_tension.is_finite()) {
@@ -284,12 +305,25 @@ impl Method for Chain {
     }
 
     fn energy(&self) -> Energy {
-        match &self.length {
+        let in_frame = match &self.length {
             None => geometry::energy(&self.phi, &self.omega),
             Some(length) => geometry::energy_of_rods(self.phi.len(), |i| {
                 (self.phi[i], self.omega[i], length[i])
             }),
+        };
+        if !self.ledger.moves() {
+            return in_frame;
         }
+        let momentum = geometry::momentum(&self.phi, &self.omega).x;
+        self.ledger.in_the_room(in_frame, self.time(), momentum)
+    }
+
+    fn support(&self) -> SupportNow {
+        if !self.ledger.moves() {
+            return SupportNow::default();
+        }
+        let momentum = geometry::momentum(&self.phi, &self.omega).x;
+        self.ledger.now(self.time(), momentum)
     }
 
     fn support_tension(&self) -> f64 {

@@ -18,6 +18,13 @@ pub(crate) struct ForceSolver {
     /// Unit tangents and normals of the rods at the evaluation state.
     pub(crate) tangent: Vec<Vector2<f64>>,
     normal: Vec<Vector2<f64>>,
+    /// Gravity per unit mass in the frame the rods are written in (y down): (0, 1) under a
+    /// fixed support, (−ẍ_s(t), 1) in the frame of a shaken one ([`Support::gravity`]). Only
+    /// the support's row of the system carries it: every rod falls alike, so at the other
+    /// joints it cancels.
+    ///
+    /// [`Support::gravity`]: crate::model::support::Support::gravity
+    pub(crate) gravity: Vector2<f64>,
 }
 
 impl ForceSolver {
@@ -28,6 +35,7 @@ impl ForceSolver {
             force: vec![Vector2::zeros(); n],
             tangent: vec![Vector2::zeros(); n],
             normal: vec![Vector2::zeros(); n],
+            gravity: Vector2::new(0.0, 1.0),
         }
     }
 
@@ -61,7 +69,7 @@ impl ForceSolver {
         // Forward elimination.
         let mut p_prev = projector(&self.normal[0]);
         let mut diag = eye + p_prev;
-        let mut rhs = Vector2::new(0.0, -m) - half_mh * omega[0] * omega[0] * self.tangent[0];
+        let mut rhs = -m * self.gravity - half_mh * omega[0] * omega[0] * self.tangent[0];
         for j in 0..n {
             if j > 0 {
                 let p = projector(&self.normal[j]);
@@ -118,7 +126,7 @@ impl ForceSolver {
         let spin = |i: usize| 0.5 * length[i] * omega[i] * omega[i] * self.tangent[i];
         let mut p_prev = projector(&self.normal[0]);
         let mut diag = eye + p_prev;
-        let mut rhs = length[0] * (Vector2::new(0.0, -1.0) - spin(0));
+        let mut rhs = length[0] * (-self.gravity - spin(0));
         for j in 0..n {
             if j > 0 {
                 let p = projector(&self.normal[j]);

@@ -4,7 +4,7 @@
 
 use super::error_model::ErrorModel;
 use crate::error::{ConfigError, Diverged};
-use crate::model::{Energy, Scene};
+use crate::model::{Energy, Scene, SupportNow};
 
 /// The tension the stability limits are written for, in m g: about that of a swing from
 /// rest in its first time units (the report saw the support tension below 5/4 in its short
@@ -67,8 +67,20 @@ pub trait Method: Send {
     fn steps(&self) -> u64;
     /// Advances one time step, or says why the new state cannot be trusted.
     fn step(&mut self) -> Result<(), Diverged>;
-    /// Total energy now (eqs. 13–16), second-order accurate in the time step.
+    /// Total energy now (eqs. 13–16), second-order accurate in the time step, in the room
+    /// (under a shaken support, the kinetic energy of the support's motion included).
     fn energy(&self) -> Energy;
+    /// The support now: where it is in the room, how it moves, and the work W it has done on
+    /// the string since the start. A fixed support at the origin, doing no work, for a method
+    /// that carries none other.
+    fn support(&self) -> SupportNow {
+        SupportNow::default()
+    }
+    /// E − W: what the string's energy would be had the support done no work, which the ideal
+    /// string keeps (E itself under a fixed support). Its change is the balance E − E₀ − W.
+    fn energy_less_work(&self) -> f64 {
+        self.energy().total() - self.support().work
+    }
     /// The tension at the support, s = 0, from the latest solve: the force the support
     /// bears along the string (a string hanging at rest: m g = 1, whatever N). Not the first
     /// of `Observation::tension`, which sits [`Descriptor::tension_first_at`] segments below.

@@ -5,7 +5,10 @@
 //!
 //! **Coordinates.** Rod centres c_i and angles θ_i, velocities v_i and rates ω_i; M =
 //! diag(h, h, h³/12) per rod, gravity f = (0, h) per rod (y down), the joint gaps g_j of
-//! `rattle` (`constraint_matrix.rs`).
+//! `rattle` (`constraint_matrix.rs`). Under a shaken support the rods live in its frame,
+//! where gravity is h (−ẍ_s, 1), taken at each step's middle: its potential is linear in
+//! the positions, so the step below keeps E′ + Σ ẍ_s(t_mid) ΔX exactly, and with it the
+//! balance E − E₀ − W of the room's energy and the support's work (docs/physics.md).
 //!
 //! **A step of length k** (Gonzalez 1999; Betsch 2005):
 //! * (q₁ − q₀)/k = (v₀ + v₁)/2,
@@ -46,8 +49,8 @@ use super::error_model::ErrorModel;
 use super::joint_forces::ForceSolver;
 use super::method::{self, Descriptor, Method, Observation, StepStatistics};
 use crate::error::{ConfigError, Diverged};
-use crate::model::Scene;
 use crate::model::geometry::{self, Energy};
+use crate::model::{Scene, SupportLedger, SupportNow};
 use nalgebra::{Matrix2, Vector2};
 
 /// C of the estimate k = C h / sqrt(F_max) past which steps are split to follow the state;
@@ -228,8 +231,15 @@ pub struct Midpoint {
     residual: f64,
     velocity_residual: f64,
     statistics: StepStatistics,
-    /// The energy at the start, which the rescale after each projection restores.
+    /// The energy at the start in the support's frame, which the rescale after each
+    /// projection restores, less what the shaken support's frame has taken since.
     energy_start: f64,
+    /// The support's motion and the work it has done.
+    ledger: SupportLedger,
+    /// The time the state is at, within the driver's step.
+    clock: f64,
+    /// Gravity in the support's frame at the middle of the step being solved.
+    gravity: Vector2<f64>,
     observer: ForceSolver,
     /// Steps since the state's velocities were last projected.
     since_projection: u64,
@@ -246,6 +256,9 @@ impl Midpoint {
         method::validate_dt(dt)?;
         let n = segments;
         let angle = scene.initial_angles(n);
+        let rate = scene.initial_rates(n);
+        let velocity = geometry::centre_velocities(&angle, &rate);
+        let momentum: f64 = velocity.iter().map(|v| v.x).sum::<f64>() / n as f64;
         let mut centres = Vec::with_capacity(n);
         geometry::centres(&angle, &mut centres); // eqs. (14)–(15)
         let mut midpoint = Self {
@@ -259,8 +272,8 @@ impl Midpoint {
                 .map(|&theta| geometry::tangent(theta))
                 .collect(),
             angle,
-            velocity: vec![Vector2::zeros(); n],
-            rate: vec![0.0; n],
+            velocity,
+            rate,
             turn: vec![0.0; n],
             multiplier: vec![Vector2::zeros(); n],
             recent: vec![Vector2::zeros(); n],
@@ -284,11 +297,14 @@ impl Midpoint {
             },
             observer: ForceSolver::new(n),
             energy_start: 0.0,
+            ledger: SupportLedger::new(scene.support(), momentum),
+            clock: 0.0,
+            gravity: Vector2::new(0.0, 1.0),
             since_projection: 0,
             projected_velocity: vec![Vector2::zeros(); n],
             projected_rate: vec![0.0; n],
         };
-        midpoint.energy_start = midpoint.energy().total();
+        midpoint.energy_start = midpoint.energy_in_frame().total();
         let mut at_rest = Observation::default();
         midpoint.observe(&mut at_rest);
         midpoint.support_tension = method::support_tension_at_rest(
@@ -297,6 +313,23 @@ impl Midpoint {
             n,
         );
         Ok(midpoint)
+    }
+
+    /// The energy in the support's frame: Σ h|v|²/2 + Σ (h³/12) ω²/2 − Σ h y (eq. 13 summed).
+    fn energy_in_frame(&self) -> Energy {
+        let (h, inertia) = (self.h, self.inertia());
+        let mut e = Energy::default();
+        for i in 0..self.angle.len() {
+            e.translational += 0.5 * h * self.velocity[i].norm_squared();
+            e.rotational += 0.5 * inertia * self.rate[i] * self.rate[i];
+            e.potential -= h * self.centre[i].y;
+        }
+        e
+    }
+
+    /// The sideways momentum in the support's frame, Σ h v_x.
+    fn momentum_x(&self) -> f64 {
+        self.h * self.velocity.iter().map(|v| v.x).sum::<f64>()
     }
 
     /// A rod's moment of inertia about its centre, h³/12.
@@ -342,9 +375,7 @@ impl Midpoint {
     #[inline]
     fn centre_increment(&self, i: usize, dt: f64) -> Vector2<f64> {
         let after = self.multiplier_after(i);
-        let mut shift = dt * self.velocity[i] + (self.multiplier[i] - after) / self.h;
-        shift.y += 0.5 * dt * dt;
-        shift
+        dt * self.velocity[i] + (self.multiplier[i] - after) / self.h + 0.5 * dt * dt * self.gravity
     }
 
     /// Newton's forward pass: every residual at the current (Δθ, μ), and the elimination of
@@ -433,6 +464,8 @@ impl Midpoint {
     /// state is then untouched: Newton moves only Δθ and μ).
     fn try_step(&mut self, dt: f64) -> bool {
         let spin_gain = 6.0 / (self.h * self.h);
+        // The frame's gravity at the step's middle: what keeps the balance exact.
+        self.gravity = self.ledger.gravity(self.clock + 0.5 * dt);
         // The guess: μ/k² of the last two steps extrapolated linearly to this step's middle
         // (each step's λ belongs to its middle), then the turns it implies.
         let n = self.angle.len();
@@ -478,8 +511,10 @@ impl Midpoint {
         }
         // v₁ = 2Δq/k − v₀ from the increments; q₁ = q₀ + Δq.
         let two_over = 2.0 / dt;
+        let mut moved = 0.0;
         for i in 0..n {
             let increment = self.centre_increment(i, dt);
+            moved += increment.x;
             let turn = self.turn[i];
             let chord = Turn::lean(self.tangent[i], turn).1;
             self.centre[i] += increment;
@@ -488,6 +523,8 @@ impl Midpoint {
             self.tangent[i] += chord;
             self.rate[i] = two_over * turn - self.rate[i];
         }
+        self.ledger.step(self.clock, dt, self.h * moved);
+        self.clock += dt;
         // F_0 = −t_0 · f_0, with f_0 = 2μ_0/k² the support's force on rod 0.
         self.support_tension = -2.0 * self.tangent[0].dot(&self.multiplier[0]) / (dt * dt);
         std::mem::swap(&mut self.recent, &mut self.older);
@@ -549,7 +586,7 @@ impl Midpoint {
         // projection removed, and the scheme's round-off since the last projection, go back.
         let potential: f64 = -h * self.centre.iter().map(|c| c.y).sum::<f64>();
         let (before, projected) = (0.5 * before, 0.5 * projected);
-        let target = self.energy_start - potential;
+        let target = self.energy_start - self.ledger.inertial_work() - potential;
         if projected > 0.0 && (target - projected).abs() <= RESCALE_LIMIT * projected {
             let scale = (target / projected).sqrt();
             self.projected_velocity.iter_mut().for_each(|v| *v *= scale);
@@ -643,20 +680,26 @@ impl Method for Midpoint {
             self.support_tension,
         )?;
         self.steps += 1;
+        // The driver's time exactly, not the sum of the steps' lengths.
+        self.clock = self.time();
         Ok(())
     }
 
     /// From the method's own velocities (projected onto the joints at the end of every driver
-    /// step): Σ h|v|²/2 + Σ (h³/12) ω²/2 − Σ h y (eq. 13 summed).
+    /// step), in the room.
     fn energy(&self) -> Energy {
-        let (h, inertia) = (self.h, self.inertia());
-        let mut e = Energy::default();
-        for i in 0..self.angle.len() {
-            e.translational += 0.5 * h * self.velocity[i].norm_squared();
-            e.rotational += 0.5 * inertia * self.rate[i] * self.rate[i];
-            e.potential -= h * self.centre[i].y;
+        if !self.ledger.moves() {
+            return self.energy_in_frame();
         }
-        e
+        self.ledger
+            .in_the_room(self.energy_in_frame(), self.clock, self.momentum_x())
+    }
+
+    fn support(&self) -> SupportNow {
+        if !self.ledger.moves() {
+            return SupportNow::default();
+        }
+        self.ledger.now(self.clock, self.momentum_x())
     }
 
     fn support_tension(&self) -> f64 {
@@ -680,6 +723,7 @@ impl Method for Midpoint {
     }
 
     fn observe(&mut self, out: &mut Observation) {
+        self.observer.gravity = self.ledger.gravity(self.clock);
         self.observer.observe(&self.angle, &self.rate, out);
     }
 

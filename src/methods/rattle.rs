@@ -4,7 +4,8 @@
 //! free end: docs/measurements.md, "Long runs".)
 //!
 //! **Coordinates.** Maximal: each rod's centre c_i and angle θ_i, with momenta p_i and L_i.
-//! The mass matrix is M = diag(h, h, h³/12) per rod; gravity is (0, h) per rod (y down).
+//! The mass matrix is M = diag(h, h, h³/12) per rod; gravity is (0, h) per rod (y down), and
+//! h (−ẍ_s(t), 1) in the frame of a shaken support, each half kick taking it at its own time.
 //!
 //! **Constraints.** g_j = end(rod j−1) − start(rod j) = 0 for j = 0 … N−1, the "end of rod −1"
 //! being the support at the origin: 2N equations. Their Jacobian G has, for joint j, the
@@ -42,8 +43,8 @@ use super::error_model::ErrorModel;
 use super::joint_forces::ForceSolver;
 use super::method::{self, Descriptor, Method, Observation};
 use crate::error::{ConfigError, Diverged};
-use crate::model::Scene;
 use crate::model::geometry::{self, Energy};
+use crate::model::{Scene, SupportLedger, SupportNow};
 use nalgebra::Vector2;
 
 /// C of the estimate k = C h / sqrt(F_max) past which steps split into substeps (Newton
@@ -156,6 +157,12 @@ pub struct Rattle {
     /// For observation: joint forces at the current state, and the angular velocities.
     observer: ForceSolver,
     rate: Vec<f64>,
+    /// The support's motion and the work it has done; as at the start of the step, to retake
+    /// it from.
+    ledger: SupportLedger,
+    start_ledger: SupportLedger,
+    /// The time the state is at, within the driver's step.
+    clock: f64,
 }
 
 impl Rattle {
@@ -166,6 +173,13 @@ impl Rattle {
         method::validate_dt(dt)?;
         let n = segments;
         let angle = scene.initial_angles(n);
+        let rate = scene.initial_rates(n);
+        let h = 1.0 / n as f64;
+        let momentum: Vec<_> = geometry::centre_velocities(&angle, &rate)
+            .into_iter()
+            .map(|v| h * v)
+            .collect();
+        let ledger = SupportLedger::new(scene.support(), momentum.iter().map(|p| p.x).sum());
         let mut centres = Vec::with_capacity(n);
         geometry::centres(&angle, &mut centres); // eqs. (14)–(15)
         let now = State {
@@ -174,9 +188,9 @@ impl Rattle {
                 .iter()
                 .map(|theta| Vector2::new(theta.cos(), theta.sin()))
                 .collect(),
+            spin: rate.iter().map(|w| h * h * h / 12.0 * w).collect(),
             angle,
-            momentum: vec![Vector2::zeros(); n],
-            spin: vec![0.0; n],
+            momentum,
         };
         let mut rattle = Self {
             h: 1.0 / n as f64,
@@ -193,7 +207,10 @@ impl Rattle {
             support_tension: 0.0,
             residual: 0.0,
             observer: ForceSolver::new(n),
-            rate: vec![0.0; n],
+            rate,
+            ledger,
+            start_ledger: ledger,
+            clock: 0.0,
         };
         rattle.matrix.factorise(&rattle.now.tangent);
         let mut at_rest = Observation::default();
@@ -231,11 +248,12 @@ impl Rattle {
     /// the joint gaps g_j = end(rod j−1) − start(rod j) into `work`. Returns the largest.
     fn kick_and_drift(&mut self, dt: f64) -> f64 {
         let (h, inertia, half) = (self.h, self.inertia(), 0.5 * self.h);
+        let kick = 0.5 * dt * h * self.ledger.gravity(self.clock);
         let now = &mut self.now;
         let mut end_before = Vector2::zeros(); // the support
         let mut largest: f64 = 0.0;
         for j in 0..now.angle.len() {
-            now.momentum[j].y += 0.5 * dt * h;
+            now.momentum[j] += kick;
             now.centre[j] += dt / h * now.momentum[j];
             now.angle[j] += dt / inertia * now.spin[j];
             let (s, c) = now.angle[j].sin_cos();
@@ -302,12 +320,17 @@ impl Rattle {
         let along = Vector2::new(n0.y, -n0.x).dot(&self.multiplier[0]);
         self.support_tension = -2.0 * along / (dt * dt);
         // 3. Momenta at the half step from the positions, then the second half kick.
+        let kick = 0.5 * dt * h * self.ledger.gravity(self.clock + dt);
         let now = &mut self.now;
+        let mut moved = 0.0;
         for i in 0..now.angle.len() {
-            now.momentum[i] = h * (now.centre[i] - self.before_centre[i]) / dt;
-            now.momentum[i].y += 0.5 * dt * h;
+            let shift = now.centre[i] - self.before_centre[i];
+            moved += shift.x;
+            now.momentum[i] = h * shift / dt + kick;
             now.spin[i] = inertia * (now.angle[i] - self.before_angle[i]) / dt;
         }
+        self.ledger.step(self.clock, dt, h * moved);
+        self.clock += dt;
         // 4. Project the velocities with A at the new configuration.
         self.matrix.factorise(&self.now.tangent);
         self.project_velocities();
@@ -339,7 +362,14 @@ impl Rattle {
     /// Goes back to the state at the start of the step (and A there).
     fn restart(&mut self) {
         self.now.copy_from(&self.start);
+        self.ledger = self.start_ledger;
+        self.clock = self.time();
         self.matrix.factorise(&self.now.tangent);
+    }
+
+    /// The sideways momentum in the support's frame, Σ p_x.
+    fn momentum_x(&self) -> f64 {
+        self.now.momentum.iter().map(|p| p.x).sum()
     }
 
     /// Why a step failed: Newton could not close the joints even in the finest substeps.
@@ -376,6 +406,7 @@ impl Method for Rattle {
 
     fn step(&mut self) -> Result<(), Diverged> {
         self.start.copy_from(&self.now);
+        self.start_ledger = self.ledger;
         let mut substeps = self.substeps();
         loop {
             let dt = self.k / substeps as f64;
@@ -407,10 +438,13 @@ impl Method for Rattle {
             self.support_tension,
         )?;
         self.steps += 1;
+        // The driver's time exactly, not the sum of the substeps' lengths.
+        self.clock = self.time();
         Ok(())
     }
 
-    /// From the method's own momenta: Σ |p|²/2h + Σ L²/(2 h³/12) − Σ h y (eq. 13 summed).
+    /// From the method's own momenta: Σ |p|²/2h + Σ L²/(2 h³/12) − Σ h y (eq. 13 summed), in
+    /// the room.
     fn energy(&self) -> Energy {
         let (h, inertia) = (self.h, self.inertia());
         let mut e = Energy::default();
@@ -419,7 +453,17 @@ impl Method for Rattle {
             e.rotational += self.now.spin[i] * self.now.spin[i] / (2.0 * inertia);
             e.potential -= h * self.now.centre[i].y;
         }
-        e
+        if !self.ledger.moves() {
+            return e;
+        }
+        self.ledger.in_the_room(e, self.clock, self.momentum_x())
+    }
+
+    fn support(&self) -> SupportNow {
+        if !self.ledger.moves() {
+            return SupportNow::default();
+        }
+        self.ledger.now(self.clock, self.momentum_x())
     }
 
     fn support_tension(&self) -> f64 {
@@ -435,6 +479,7 @@ impl Method for Rattle {
     }
 
     fn observe(&mut self, out: &mut Observation) {
+        self.observer.gravity = self.ledger.gravity(self.clock);
         let inertia = self.inertia();
         for (rate, spin) in self.rate.iter_mut().zip(&self.now.spin) {
             *rate = spin / inertia;

@@ -58,6 +58,12 @@ impl MethodKind {
     /// Why [`Self::FOLD_DEFAULT`] is the fold's default, as the run and its summary say it.
     pub const FOLD_DEFAULT_BECAUSE: &str = "it keeps the energy through the final snap to round-off, where the report's scheme diverges in the first second, rattle's energy jumps and the chain's drifts";
 
+    /// The method a shake runs when none is named.
+    pub const SHAKE_DEFAULT: MethodKind = MethodKind::Midpoint;
+
+    /// Why [`Self::SHAKE_DEFAULT`] is the shake's default, as the run and its summary say it.
+    pub const SHAKE_DEFAULT_BECAUSE: &str = "it keeps the balance E − E₀ − W of the string's energy and the support's work to round-off (the shaken frame's gravity taken at each step's middle), where the chain's and rattle's drift; the report's scheme cannot carry a moving support";
+
     /// The method `rope study` computes its converged reference with: of a known, whole order
     /// in h (Richardson's extrapolation needs one) and with no stability limit to respect.
     pub const REFERENCE: MethodKind = MethodKind::Chain;

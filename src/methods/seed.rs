@@ -123,6 +123,9 @@ impl Seed {
         if let Scene::Fold { .. } = scene {
             return Err(ConfigError::SeedFold);
         }
+        if let Scene::Shake { .. } = scene {
+            return Err(ConfigError::SeedShake);
+        }
         let phi = scene.initial_angles(segments);
         let mut seed = Self {
             h: 1.0 / segments as f64,

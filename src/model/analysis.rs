@@ -1,4 +1,5 @@
-//! Measurements on sampled time series: oscillation periods from zero crossings.
+//! Measurements on sampled series: oscillation periods from zero crossings, and the peaks of
+//! a response sampled over frequency.
 
 /// The period of an oscillation about zero sampled as `(t, x)` pairs, from its zero crossings
 /// (located by linear interpolation): successive crossings are half a period apart, and the
@@ -23,9 +24,50 @@ pub fn period_from_zero_crossings(samples: impl IntoIterator<Item = (f64, f64)>)
     }
 }
 
+/// The peaks of a positive response sampled as `(x, y)` pairs in increasing x: each sample
+/// higher than both its neighbours, its place refined by the parabola through log y at the
+/// three (a resonance's peak is near a parabola in log y; the refinement stays within the
+/// neighbours). Returns `(x, y)` of each peak, in increasing x.
+pub fn peaks(samples: &[(f64, f64)]) -> Vec<(f64, f64)> {
+    samples
+        .windows(3)
+        .filter(|w| w[1].1 > w[0].1 && w[1].1 > w[2].1 && w.iter().all(|p| p.1 > 0.0))
+        .map(|w| {
+            let [(x0, y0), (x1, y1), (x2, y2)] = [w[0], w[1], w[2]];
+            let (l0, l1, l2) = (y0.ln(), y1.ln(), y2.ln());
+            // The vertex of the parabola through the three points (x unevenly spaced too).
+            let d01 = (l1 - l0) / (x1 - x0);
+            let d12 = (l2 - l1) / (x2 - x1);
+            let curvature = (d12 - d01) / (x2 - x0);
+            let vertex = if curvature < 0.0 {
+                0.5 * (x0 + x1) - d01 / (2.0 * curvature)
+            } else {
+                x1
+            };
+            (vertex.clamp(x0, x2), y1)
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_peaks_of_two_resonances_sampled_coarsely_are_found_between_the_samples() {
+        let response =
+            |x: f64| 1.0 / ((x - 1.23).powi(2) + 0.01) + 1.0 / ((x - 2.71).powi(2) + 0.01);
+        let samples: Vec<(f64, f64)> = (0..40)
+            .map(|i| {
+                let x = 0.2 + 0.1 * i as f64;
+                (x, response(x))
+            })
+            .collect();
+        let found = peaks(&samples);
+        assert_eq!(found.len(), 2, "{found:?}");
+        assert!((found[0].0 - 1.23).abs() < 0.02, "{found:?}");
+        assert!((found[1].0 - 2.71).abs() < 0.02, "{found:?}");
+    }
 
     #[test]
     fn period_of_a_sampled_cosine() {

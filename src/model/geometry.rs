@@ -161,6 +161,38 @@ pub fn momentum(angles: &[f64], angular_velocity: &[f64]) -> Vector2<f64> {
         })
 }
 
+/// The string's first moment Σ m_i c_i (mass 1) over the rods' centres, = Σ h t_j (1 − s_j),
+/// s_j = (j + ½) h, as for [`momentum`]: the centre of mass. Under a shaken support the
+/// frame's inertial force does work on its sideways part.
+pub fn first_moment(angles: &[f64]) -> Vector2<f64> {
+    let h = 1.0 / angles.len() as f64;
+    angles
+        .iter()
+        .enumerate()
+        .fold(Vector2::zeros(), |x, (j, &phi)| {
+            let beyond = 1.0 - (j as f64 + 0.5) * h;
+            x + h * beyond * tangent(phi)
+        })
+}
+
+/// The rods' centre velocities v_i = Σ_{j<i} h φ̇_j n_j + (h/2) φ̇_i n_i of equal rods at
+/// `angles` turning at `angular_velocity`: what a method in maximal coordinates starts from.
+pub fn centre_velocities(angles: &[f64], angular_velocity: &[f64]) -> Vec<Vector2<f64>> {
+    let h = 1.0 / angles.len() as f64;
+    let mut end = Vector2::zeros();
+    angles
+        .iter()
+        .zip(angular_velocity)
+        .map(|(&phi, &w)| {
+            let (s, c) = phi.sin_cos();
+            let turn = h * w * Vector2::new(-s, c);
+            let centre = end + 0.5 * turn;
+            end += turn;
+            centre
+        })
+        .collect()
+}
+
 /// Tip acceleration Σ h (φ̈_i n_i − φ̇_i² t_i).
 pub fn tip_acceleration(
     angles: &[f64],

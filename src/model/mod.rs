@@ -7,7 +7,9 @@ pub mod bessel;
 pub mod fold;
 pub mod geometry;
 pub mod scene;
+pub mod support;
 pub mod theory;
 
 pub use geometry::{Energy, Point};
-pub use scene::Scene;
+pub use scene::{Scene, ShakeStart};
+pub use support::{Support, SupportLedger, SupportNow};

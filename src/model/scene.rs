@@ -2,6 +2,7 @@
 
 use super::bessel;
 use super::fold;
+use super::support::{self, Support};
 use super::theory::{Comparison, Reading};
 use crate::error::ConfigError;
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -19,7 +20,45 @@ pub enum Scene {
     /// a half circle of diameter `gap`; the end away from the support is let go (Calkin &
     /// March's falling chain, [`fold`]).
     Fold { gap: f64 },
+    /// Hanging straight down, its support shaken sideways, x_s(t) = `amplitude` sin(`frequency`
+    /// t) ([`Support::Shaken`]); starting on the linear steady state or at rest.
+    Shake {
+        amplitude: f64,
+        frequency: f64,
+        start: ShakeStart,
+    },
 }
+
+/// How a shaken string starts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum ShakeStart {
+    /// On the linear steady state, u(z, t) = A J₀(2Ω√z)/J₀(2Ω) sin Ωt at t = 0: hanging
+    /// straight, every point moving sideways in step with the support, so that the motion is
+    /// periodic from the first frame.
+    Steady,
+    /// Hanging still: the steady state and the free modes the start excites, together.
+    Rest,
+}
+
+impl ShakeStart {
+    /// The name on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Steady => "steady",
+            Self::Rest => "rest",
+        }
+    }
+}
+
+/// The largest sideways amplitude of a shaken support, in string lengths: the theory the
+/// scene is held against is linear.
+pub const SHAKE_AMPLITUDE_MAX: f64 = 0.05;
+/// The largest shaking frequency: past it the string's response is confined to a few rods
+/// near the free end at any N a run can afford (the n-th mode has n − 1 nodes).
+pub const SHAKE_FREQUENCY_MAX: f64 = 20.0;
+/// The largest tip amplitude a steady start may ask for, in string lengths: nearer a
+/// resonance the linear steady state is no longer small.
+pub const STEADY_TIP_MAX: f64 = 0.2;
 
 /// The largest gap a fold can have: at 2/π the half circle takes the whole string.
 pub const FOLD_GAP_MAX: f64 = 2.0 / PI;
@@ -37,6 +76,22 @@ impl Scene {
             Self::Release { .. } => "release",
             Self::Mode { .. } => "mode",
             Self::Fold { .. } => "fold",
+            Self::Shake { .. } => "shake",
+        }
+    }
+
+    /// How the support moves in this scene: fixed, but in a shake.
+    pub fn support(&self) -> Support {
+        match *self {
+            Self::Shake {
+                amplitude,
+                frequency,
+                ..
+            } => Support::Shaken {
+                amplitude,
+                frequency,
+            },
+            Self::Release { .. } | Self::Mode { .. } | Self::Fold { .. } => Support::Fixed,
         }
     }
 
@@ -61,6 +116,27 @@ impl Scene {
                     return Err(ConfigError::FoldGap(gap));
                 }
             }
+            Self::Shake {
+                amplitude,
+                frequency,
+                start,
+            } => {
+                if !(amplitude > 0.0 && amplitude <= SHAKE_AMPLITUDE_MAX) {
+                    return Err(ConfigError::ShakeAmplitude(amplitude));
+                }
+                if !(frequency > 0.0 && frequency <= SHAKE_FREQUENCY_MAX) {
+                    return Err(ConfigError::ShakeFrequency(frequency));
+                }
+                let tip = amplitude * support::steady_response(frequency, 0.0).abs();
+                if start == ShakeStart::Steady && tip > STEADY_TIP_MAX {
+                    return Err(ConfigError::SteadyNearResonance {
+                        frequency,
+                        amplitude,
+                        tip,
+                        resonance: nearest_resonance(frequency),
+                    });
+                }
+            }
         }
         Ok(())
     }
@@ -69,7 +145,7 @@ impl Scene {
     pub fn support_angle(&self) -> f64 {
         match *self {
             Self::Release { angle_deg } => angle_deg.to_radians(),
-            Self::Mode { .. } | Self::Fold { .. } => FRAC_PI_2,
+            Self::Mode { .. } | Self::Fold { .. } | Self::Shake { .. } => FRAC_PI_2,
         }
     }
 
@@ -80,7 +156,7 @@ impl Scene {
             Self::Mode { number, .. } => {
                 Some(std::f64::consts::TAU / bessel::mode_frequency(number))
             }
-            Self::Release { .. } | Self::Fold { .. } => None,
+            Self::Release { .. } | Self::Fold { .. } | Self::Shake { .. } => None,
         }
     }
 
@@ -94,7 +170,7 @@ impl Scene {
                 let (sin, cos) = angle_deg.to_radians().sin_cos();
                 Some((-sin * tip_x + cos * tip_y - cos * time * time / 2.0).abs())
             }
-            Self::Mode { .. } | Self::Fold { .. } => None,
+            Self::Mode { .. } | Self::Fold { .. } | Self::Shake { .. } => None,
         }
     }
 
@@ -106,6 +182,22 @@ impl Scene {
                 "**Theory** (Calkin & March, Am. J. Phys. 57, 154 (1989)), x the free end's fall: an energy-conserving string's free end moves at v² = x (2 − x)/(1 − x), faster than free fall's 2x, and the support pulls with (1 + x)/2 + v²/4 of the weight; the whole fall takes {:.3} (free fall: {:.3}). The plots show each beside the run, at the run's own x, until the snap. The theory is for no gap; this one is {gap}, and the bend needs N ≥ 2/gap.",
                 fold::time_to_fall(1.0),
                 2f64.sqrt()
+            )),
+            Self::Shake {
+                amplitude,
+                frequency,
+                ..
+            } => Some(format!(
+                "**Theory** (linear, D. Bernoulli's hanging string): shaken as x_s = A sin Ωt, the string answers with u(z, t) = A J₀(2Ω√z)/J₀(2Ω) sin Ωt, z the height above the free end, so the free end swings {:.4} (A/|J₀(2Ω)|, A = {amplitude}, Ω = {frequency}){}. It resonates where J₀(2Ω) = 0: ω₁ = {:.4}, ω₂ = {:.4}, ω₃ = {:.4}. The energy panel shows the support's work W and the balance E − E₀ − W, which an exact method keeps at zero.",
+                amplitude * support::steady_response(frequency, 0.0).abs(),
+                if support::steady_response(frequency, 0.0) < 0.0 {
+                    ", against the support's motion"
+                } else {
+                    ", with the support's motion"
+                },
+                bessel::mode_frequency(1),
+                bessel::mode_frequency(2),
+                bessel::mode_frequency(3),
             )),
             Self::Release { .. } | Self::Mode { .. } => None,
         }
@@ -141,7 +233,60 @@ impl Scene {
                         .predicted("(1 − x) v/2 at this fall", at_fall(fold::momentum)),
                 ]
             }
+            Self::Shake {
+                amplitude,
+                frequency,
+                start,
+            } => {
+                // The steady state is the motion of a steady start; from rest it is the part
+                // the shaking drives, beside the free modes the start excites. Near a
+                // resonance, where the steady state is no longer small, a start from rest
+                // grows instead: its envelope is linear theory's.
+                let response = support::steady_response(frequency, 0.0);
+                let measured = Comparison::new(Comparison::TIP_SIDEWAYS, reading.tip.x);
+                let compared = if start == ShakeStart::Rest
+                    && amplitude * response.abs() > STEADY_TIP_MAX
+                {
+                    let resonance = nearest_resonance(frequency);
+                    let growth =
+                        support::resonant_growth_per_period(resonance_number(resonance), amplitude);
+                    measured.predicted(
+                        "resonance's envelope, growing c_n π A a period",
+                        Some(growth * reading.time * resonance / std::f64::consts::TAU),
+                    )
+                } else {
+                    measured.predicted(
+                        "steady state A sin Ωt / J₀(2Ω)",
+                        Some(amplitude * response * (frequency * reading.time).sin()),
+                    )
+                };
+                vec![compared]
+            }
             Self::Release { .. } | Self::Mode { .. } => Vec::new(),
+        }
+    }
+
+    /// Rates φ̇_i at the start, sampled at the segment centres as [`Scene::initial_angles`]:
+    /// zero but for a shake started on its steady state, whose every point moves sideways at
+    /// u̇ = AΩ J₀(2Ω√z)/J₀(2Ω) in the room, u̇ − AΩ in the support's frame. Hanging straight,
+    /// x(s) = ∫ cos φ, so φ̇ = −d(u̇ − AΩ)/ds = −AΩ² J₁(2Ω√z) / (√z J₀(2Ω)), z = 1 − s.
+    pub fn initial_rates(&self, segments: usize) -> Vec<f64> {
+        match *self {
+            Self::Shake {
+                amplitude,
+                frequency,
+                start: ShakeStart::Steady,
+            } => {
+                let h = 1.0 / segments as f64;
+                let scale = amplitude * frequency * frequency / bessel::j0(2.0 * frequency);
+                (0..segments)
+                    .map(|i| {
+                        let r = (1.0 - (i as f64 + 0.5) * h).sqrt();
+                        -scale * bessel::j1(2.0 * frequency * r) / r
+                    })
+                    .collect()
+            }
+            _ => vec![0.0; segments],
         }
     }
 
@@ -164,8 +309,24 @@ impl Scene {
                     .collect()
             }
             Self::Fold { gap } => fold_angles(gap, segments),
+            Self::Shake { .. } => vec![FRAC_PI_2; segments],
         }
     }
+}
+
+/// The resonance ω_n nearest `frequency` (of the first 40).
+pub fn nearest_resonance(frequency: f64) -> f64 {
+    bessel::mode_frequency(resonance_number(frequency))
+}
+
+/// n of the resonance ω_n nearest `frequency` (of the first 40).
+pub fn resonance_number(frequency: f64) -> u32 {
+    (1..=40)
+        .min_by(|&a, &b| {
+            let off = |n| (bessel::mode_frequency(n) - frequency).abs();
+            off(a).total_cmp(&off(b))
+        })
+        .unwrap_or(1)
 }
 
 /// The U of a fold cut into `segments` equal rods: rod i points along the chord of the U's
@@ -208,6 +369,20 @@ impl std::fmt::Display for Scene {
                 write!(f, "mode {number} (tip amplitude {amplitude})")
             }
             Self::Fold { gap } => write!(f, "fold (gap {gap})"),
+            Self::Shake {
+                amplitude,
+                frequency,
+                start,
+            } => {
+                // A sweep's frequencies to four decimals, trailing zeros dropped.
+                let omega = format!("{frequency:.4}");
+                let omega = omega.trim_end_matches('0').trim_end_matches('.');
+                write!(
+                    f,
+                    "shake (A = {amplitude}, Ω = {omega}, from {})",
+                    start.name()
+                )
+            }
         }
     }
 }

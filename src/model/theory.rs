@@ -41,6 +41,8 @@ impl Comparison {
     /// The string's downward momentum: its rate of change is the weight less the support's
     /// pull, so that its change over a window gives the support's pull averaged over it.
     pub const MOMENTUM: &'static str = "downward momentum";
+    /// The free end's sideways displacement in the room.
+    pub const TIP_SIDEWAYS: &'static str = "free end's sideways displacement";
     /// The support's pull averaged over the last stretch of time, from the change of the
     /// downward momentum: smooth where the raw tension jumps as each rod rounds a bend.
     pub const SUPPORT_PULL: &'static str = "support's pull, averaged";

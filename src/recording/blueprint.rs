@@ -16,12 +16,13 @@ use rerun::blueprint::{
 /// the method, N and k over the rope when every run of the recording shares them. With
 /// several methods side by side (`lanes`, a plan each), their ropes share the rope view,
 /// each in its method's hue (named in the view's legend), and the energy panel gives way to
-/// their distance from the most accurate one's string.
-pub fn blueprint(headline: Option<&str>, lanes: &[RunPlan]) -> Blueprint {
+/// their distance from the most accurate one's string. A `sweep` of a shake's frequency gets
+/// a view of the free end's largest swing against Ω.
+pub fn blueprint(headline: Option<&str>, lanes: &[RunPlan], sweep: bool) -> Blueprint {
     window([
         rope_view(headline, lanes.len() > 1).into(),
         tension_profile_view().into(),
-        plots(lanes).into(),
+        plots(lanes, sweep).into(),
     ])
 }
 
@@ -41,12 +42,46 @@ fn window(columns: [ContainerLike; 3]) -> Blueprint {
 }
 
 /// The plots: energy (side by side, the disagreement; a fold, its theory: the free end's fall,
-/// speed and the support's tension), its deviation, the error estimate, and the diagnostics' tabs.
-fn plots(lanes: &[RunPlan]) -> Vertical {
+/// speed and the support's tension; a shake, the free end's sideways swing against the steady
+/// state, and the energy balance with the support's work), its deviation, the error estimate,
+/// and the diagnostics' tabs.
+fn plots(lanes: &[RunPlan], sweep: bool) -> Vertical {
     let fold = lanes
         .iter()
         .all(|p| matches!(p.scene, crate::model::Scene::Fold { .. }));
+    let shake = lanes.iter().all(|p| p.scene.support().moves());
     match lanes {
+        [_] if shake && sweep => Vertical::new([
+            Spatial2DView::new(
+                "Sweep: the free end's largest swing against Ω (log scale), resonances marked",
+            )
+            .with_origin(path::SWEEP)
+            .into(),
+            series_view(
+                "Free end's sideways x: measured, linear theory, the support",
+                path::SIDEWAYS,
+            )
+            .into(),
+            TimeSeriesView::new("log₁₀ |E − E₀ − W|: the energy balance")
+                .with_origin(path::LOG_BALANCE)
+                .into(),
+            diagnostics(false).into(),
+        ])
+        .with_row_shares([3.0, 1.5, 1.0, 1.5]),
+        [_] if shake => Vertical::new([
+            series_view(
+                "Free end's sideways x: measured, the linear steady state, the support",
+                path::SIDEWAYS,
+            )
+            .into(),
+            TimeSeriesView::new("Energy gained E − E₀ and the support's work W")
+                .with_contents([path::GAINED, path::SUPPORT_WORK])
+                .into(),
+            TimeSeriesView::new("log₁₀ |E − E₀ − W|: the energy balance")
+                .with_origin(path::LOG_BALANCE)
+                .into(),
+            diagnostics(false).into(),
+        ]),
         [_] if fold => Vertical::new([
             series_view(
                 "Free end's fall x(t): measured, Calkin–March, free fall",
@@ -84,7 +119,12 @@ fn plots(lanes: &[RunPlan]) -> Vertical {
 /// The layout for viewers of a run that never ends: the live rope, and under the tension
 /// profile the rope "then", at the time cursor, from the history kept every
 /// `shape_interval` time units; the plots as for a run of every frame.
-pub fn live(headline: Option<&str>, lanes: &[RunPlan], shape_interval: f64) -> Blueprint {
+pub fn live(
+    headline: Option<&str>,
+    lanes: &[RunPlan],
+    shape_interval: f64,
+    sweep: bool,
+) -> Blueprint {
     window([
         live_rope_view(headline, lanes.len() > 1).into(),
         Vertical::new([
@@ -93,7 +133,7 @@ pub fn live(headline: Option<&str>, lanes: &[RunPlan], shape_interval: f64) -> B
         ])
         .with_row_shares([3.0, 2.0])
         .into(),
-        plots(lanes).into(),
+        plots(lanes, sweep).into(),
     ])
 }
 

@@ -10,7 +10,7 @@
 
 use super::live::HistoryRates;
 use super::logger::{HISTORY_SEND_UNITS, RopeLogger};
-use crate::model::{Energy, Point};
+use crate::model::{Energy, Point, SupportNow};
 use crate::run::config::trimmed_fixed;
 use crate::run::cost::Cost;
 use crate::run::estimate::ErrorEstimate;
@@ -213,6 +213,18 @@ fn sample_frame(plan: &RunPlan, step: u64, time: f64, lane: Option<usize>) -> Fr
             potential: -0.5 - 0.1 * time.sin(),
         },
         energy_deviation: 1e-9 * time.cos(),
+        // A moving support's series (its work and the balance) as a shake sends them.
+        support: if plan.scene.support().moves() {
+            SupportNow {
+                position: 1e-3 * time.sin(),
+                velocity: 1e-3 * time.cos(),
+                acceleration: -1e-3 * time.sin(),
+                work: 1e-4 * time.sin(),
+            }
+        } else {
+            SupportNow::default()
+        },
+        balance: plan.scene.support().moves().then_some(1e-12 * time.cos()),
         tip_velocity: Vector2::new(time.cos(), time.sin()),
         tip_acceleration: Vector2::new(-time.sin(), time.cos()),
         momentum: Vector2::new(0.5 * time.cos(), 0.5 * time.sin()),

@@ -26,6 +26,13 @@ pub mod path {
     pub const POTENTIAL: &str = "energy/potential";
     pub const TOTAL: &str = "energy/total";
     pub const DEVIATION: &str = "energy/deviation";
+    /// A shaken support: the work it has done on the string, and E − E₀ − W.
+    pub const SUPPORT_WORK: &str = "energy/support_work";
+    pub const GAINED: &str = "energy/gained";
+    pub const BALANCE: &str = "energy/balance";
+    pub const LOG_BALANCE: &str = "log10/energy_balance";
+    /// A shaken support's track, ±A about the origin.
+    pub const SUPPORT_TRACK: &str = "rope/support_track";
     pub const SUPPORT_TENSION: &str = "support/tension";
     pub const TIP_SPEED: &str = "tip/speed";
     pub const TIP_ACCELERATION: &str = "tip/acceleration";
@@ -74,6 +81,18 @@ pub mod path {
     pub const TENSION_PREDICTED: &str = "theory/support_tension/calkin_march";
     pub const PULL_MEASURED: &str = "theory/support_tension/pull_measured";
     pub const PULL_PREDICTED: &str = "theory/support_tension/pull_calkin_march";
+    /// A shake: the free end's sideways displacement, the linear steady state's, and the
+    /// support's own.
+    pub const SIDEWAYS: &str = "theory/tip_sideways";
+    pub const SIDEWAYS_MEASURED: &str = "theory/tip_sideways/measured";
+    pub const SIDEWAYS_PREDICTED: &str = "theory/tip_sideways/steady_state";
+    pub const SIDEWAYS_SUPPORT: &str = "theory/tip_sideways/support";
+    /// A sweep of the shaking frequency: the free end's largest swing against Ω, and its
+    /// guides (decades of swing, the resonances).
+    pub const SWEEP: &str = "sweep";
+    pub const SWEEP_CURVE: &str = "sweep/curve";
+    pub const SWEEP_GUIDES: &str = "sweep/guides";
+    pub const SWEEP_LABELS: &str = "sweep/labels";
     pub const EVENTS: &str = "events";
     pub const PARAMETERS: &str = "parameters";
 }
@@ -99,7 +118,7 @@ pub fn log10_abs(x: f64) -> f64 {
 const LOG_FLOOR: f64 = -16.0;
 
 /// Every time series the recording carries, styled once and filled by each batch.
-pub const SERIES: [Series; 26] = [
+pub const SERIES: [Series; 33] = [
     (path::KINETIC, "kinetic", [230, 120, 30], |f| {
         f.energy.kinetic()
     }),
@@ -233,6 +252,46 @@ pub const SERIES: [Series; 26] = [
         [40, 150, 200],
         |f| theory(f, Comparison::SUPPORT_PULL, Some(0)),
     ),
+    // Only a run whose support moves (a shake) has these.
+    (
+        path::SUPPORT_WORK,
+        "W, the support's work",
+        [40, 150, 200],
+        |f| f.balance.map_or(f64::NAN, |_| f.support.work),
+    ),
+    (
+        path::GAINED,
+        "E − E₀, the energy gained",
+        [230, 120, 30],
+        |f| f.balance.map_or(f64::NAN, |b| b + f.support.work),
+    ),
+    (path::BALANCE, "E − E₀ − W", [200, 40, 40], |f| {
+        f.balance.unwrap_or(f64::NAN)
+    }),
+    (
+        path::LOG_BALANCE,
+        "log₁₀ |E − E₀ − W|",
+        [200, 40, 40],
+        |f| log10_abs(f.balance.unwrap_or(f64::NAN)),
+    ),
+    (
+        path::SIDEWAYS_MEASURED,
+        "free end x, measured",
+        [40, 150, 80],
+        |f| theory(f, Comparison::TIP_SIDEWAYS, None),
+    ),
+    (
+        path::SIDEWAYS_PREDICTED,
+        "linear theory: A sin Ωt / J₀(2Ω), or a resonance's envelope",
+        [200, 40, 40],
+        |f| theory(f, Comparison::TIP_SIDEWAYS, Some(0)),
+    ),
+    (
+        path::SIDEWAYS_SUPPORT,
+        "support x_s = A sin Ωt",
+        [125, 125, 125],
+        |f| f.balance.map_or(f64::NAN, |_| f.support.position),
+    ),
 ];
 
 /// The time series each of several methods side by side sends: what the plots show. A frame
@@ -251,8 +310,12 @@ pub const SIDE_BY_SIDE: [&str; 7] = [
 
 /// The time series a history beside a live picture leaves out: the raw values whose decimal
 /// logarithms the plots show.
-pub const HISTORY_LEAVES_OUT: [&str; 3] =
-    [path::DEVIATION, path::TIP_ESTIMATE, path::SHAPE_ESTIMATE];
+pub const HISTORY_LEAVES_OUT: [&str; 4] = [
+    path::DEVIATION,
+    path::TIP_ESTIMATE,
+    path::SHAPE_ESTIMATE,
+    path::BALANCE,
+];
 
 /// A frame's `quantity` of its scene's theory: measured (`prediction` `None`), or the
 /// prediction at that index; NaN (not drawn) where the frame has none.

@@ -537,6 +537,16 @@ fn send_lane_series(
 }
 
 impl RopeLogger {
+    /// The sweep of the shaking frequency so far: each run's Ω and the free end's largest
+    /// swing, for a support of `amplitude` ([`super::sweep_view`]).
+    pub fn log_sweep(
+        &self,
+        amplitude: f64,
+        points: &[(f64, f64)],
+    ) -> rerun::RecordingStreamResult<()> {
+        super::sweep_view::log_sweep(&self.rec, amplitude, points)
+    }
+
     /// What is running, where the run starts: the caption over the rope, and the parameters.
     fn log_run_text(&mut self, headline: String, markdown: String) -> Result<(), RecordingError> {
         let (time, step) = (self.time_offset, self.step_offset as i64);
@@ -631,6 +641,7 @@ impl FrameSink for RopeLogger {
         self.send_series()?;
         self.lanes = vec![LaneLog::alone(Some(plan), self.keeping)];
         self.tolerance = plan.tolerance;
+        styling::log_support_track(&self.rec, plan.scene.support())?;
         self.log_run_text(plan.headline(), plan.markdown())
     }
 

@@ -25,4 +25,5 @@ pub mod logger;
 pub mod memory;
 pub mod shapes;
 pub mod styling;
+pub mod sweep_view;
 pub mod viewer_sinks;

@@ -1,9 +1,11 @@
 //! What never changes in a recording of the rope, logged once and static: the "then"
-//! rope's styling, the tension colour bar and the tension profile's axes.
+//! rope's styling, the tension colour bar, the tension profile's axes and a shaken
+//! support's track.
 
 use super::colour::{SCALE_MAX, hue_shade, tension_colour};
 use super::entities::path;
 use super::shapes::ROPE_RADIUS;
+use crate::model::Support;
 use rerun::RecordingStream;
 
 /// The "then" rope's styling: thinner and paler than the live one, its tip labelled
@@ -104,5 +106,28 @@ pub(super) fn log_profile_axes(rec: &RecordingStream) -> rerun::RecordingStreamR
             .with_colors([grey])
             .with_labels(names)
             .with_show_labels(true),
+    )
+}
+
+/// A shaken support's track: a line from −A to A through the support's rest position, along
+/// which the rope's top end slides, and the support's label saying so (nothing for a fixed
+/// support).
+pub(super) fn log_support_track(
+    rec: &RecordingStream,
+    support: Support,
+) -> rerun::RecordingStreamResult<()> {
+    let Support::Shaken { amplitude, .. } = support else {
+        return Ok(());
+    };
+    let a = amplitude as f32;
+    rec.log_static(
+        path::SUPPORT_TRACK,
+        &rerun::LineStrips2D::new([[[-a, 0.0f32], [a, 0.0]]])
+            .with_radii([0.004])
+            .with_colors([rerun::Color::from_rgb(90, 90, 90)]),
+    )?;
+    rec.log_static(
+        path::SUPPORT,
+        &rerun::Points2D::update_fields().with_labels([format!("support, shaken ±{amplitude}")]),
     )
 }

@@ -245,7 +245,7 @@ impl RunPlan {
     pub fn angle_deg(&self) -> f64 {
         match self.scene {
             Scene::Release { angle_deg } => angle_deg,
-            Scene::Mode { .. } | Scene::Fold { .. } => 90.0,
+            Scene::Mode { .. } | Scene::Fold { .. } | Scene::Shake { .. } => 90.0,
         }
     }
 }

@@ -104,6 +104,9 @@ impl Shadow {
             return None;
         }
         geometry::nodes(self.method.angles(), &mut self.nodes);
+        // In the room, as the run's nodes are.
+        let carried = nalgebra::Vector2::new(self.method.support().position, 0.0);
+        self.nodes.iter_mut().for_each(|p| *p += carried);
         let tip = nodes.last().copied().unwrap_or_else(Point::origin);
         let shadow_tip = self.nodes.last().copied().unwrap_or_else(Point::origin);
         let half = self.nodes.len().saturating_sub(1).max(1) as f64;

@@ -11,6 +11,7 @@ pub mod estimate;
 pub mod lanes;
 pub mod pipeline;
 pub mod progress;
+pub mod shake_figures;
 pub mod simulate;
 pub mod sink;
 pub mod summary;

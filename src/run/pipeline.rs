@@ -168,6 +168,7 @@ pub(super) fn simulate_and_send(
             momentum: frame.momentum,
         });
         samples.push(frame.time, frame.tip());
+        samples.push_support(&frame);
         samples.theory.push(frame.time, &frame.theory);
         // The plot's averaged pull, after the summary's reading (which averages its own).
         if let Some(pull) = pull.push(frame.time, &frame.theory) {

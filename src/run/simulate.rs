@@ -8,8 +8,8 @@ use crate::error::Diverged;
 use crate::methods::{
     Method, MethodKind, Observation, StepStatistics, stability_hint, whole_division,
 };
-use crate::model::Scene;
 use crate::model::geometry::{self, Energy, Point};
+use crate::model::{Scene, SupportNow};
 use nalgebra::Vector2;
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -55,7 +55,8 @@ pub struct EstimateOutcome {
 pub struct Frame {
     pub step: u64,
     pub time: f64,
-    /// Node positions, support … tip (N + 1 points, eqs. 14–15).
+    /// Node positions in the room, support … tip (N + 1 points, eqs. 14–15, from the
+    /// support where it is now).
     pub nodes: Vec<Point>,
     /// Tension on each segment, the first at [`Frame::tension_first_at`] segments from the
     /// support, the others a segment apart.
@@ -63,9 +64,16 @@ pub struct Frame {
     /// Where the first tension sits, in segments from the support
     /// ([`crate::methods::Descriptor::tension_first_at`]).
     pub tension_first_at: f64,
+    /// In the room: under a shaken support, the kinetic energy of its motion included.
     pub energy: Energy,
-    /// (E − E_ref) / scale, E_ref the energy after [`REFERENCE_STEP`] steps.
+    /// (E − W − E_ref) / scale, E_ref the same after [`REFERENCE_STEP`] steps, W the work the
+    /// support has done (none unless it moves).
     pub energy_deviation: f64,
+    /// The support: where it is, how it moves, and the work it has done since the start.
+    pub support: SupportNow,
+    /// E − E₀ − W, E₀ the energy at the start: what the energy gained beyond the support's
+    /// work (zero for the ideal string); `None` under a fixed support, where it is E − E₀.
+    pub balance: Option<f64>,
     pub tip_velocity: Vector2<f64>,
     pub tip_acceleration: Vector2<f64>,
     /// The string's momentum (mass 1, [`geometry::momentum`]): what the support's force
@@ -177,18 +185,45 @@ fn frame_step(j: u64, options: &Options, dt: f64, stride: u64) -> u64 {
     stride * (time / (dt * stride as f64)).round() as u64
 }
 
+/// The energies a frame's deviation and balance are measured from: E − W after
+/// [`REFERENCE_STEP`] steps and at the start, and what deviations are divided by.
+#[derive(Clone, Copy, Debug)]
+pub struct EnergyBase {
+    pub reference: f64,
+    pub start: f64,
+    pub scale: f64,
+}
+
+impl EnergyBase {
+    /// The base of a run of `method` from its start.
+    pub fn of(method: &dyn Method) -> Self {
+        let reference = reference_energy(method);
+        Self {
+            reference,
+            start: method.energy_less_work(),
+            scale: if reference.abs() >= 0.01 {
+                reference.abs()
+            } else {
+                1.0
+            },
+        }
+    }
+}
+
 /// Builds a frame from the method's current state.
-pub fn frame(
-    method: &mut dyn Method,
-    obs: &mut Observation,
-    energy_reference: f64,
-    energy_scale: f64,
-) -> Frame {
+pub fn frame(method: &mut dyn Method, obs: &mut Observation, base: EnergyBase) -> Frame {
     method.observe(obs);
+    let support = method.support();
     let mut nodes = Vec::with_capacity(obs.angle.len() + 1);
     geometry::nodes(&obs.angle, &mut nodes);
+    let carried = Vector2::new(support.position, 0.0);
+    let moving = Vector2::new(support.velocity, 0.0);
+    if support.position != 0.0 {
+        nodes.iter_mut().for_each(|p| *p += carried);
+    }
     let energy = method.energy();
     let first_at = method.descriptor().tension_first_at;
+    let kept = energy.total() - support.work;
     Frame {
         step: method.steps(),
         time: method.time(),
@@ -196,14 +231,16 @@ pub fn frame(
         tension: obs.tension.clone(),
         tension_first_at: first_at,
         energy,
-        energy_deviation: (energy.total() - energy_reference) / energy_scale,
-        tip_velocity: geometry::tip_velocity(&obs.angle, &obs.angular_velocity),
-        momentum: geometry::momentum(&obs.angle, &obs.angular_velocity),
+        energy_deviation: (kept - base.reference) / base.scale,
+        balance: (support != SupportNow::default()).then_some(kept - base.start),
+        support,
+        tip_velocity: geometry::tip_velocity(&obs.angle, &obs.angular_velocity) + moving,
+        momentum: geometry::momentum(&obs.angle, &obs.angular_velocity) + moving,
         tip_acceleration: geometry::tip_acceleration(
             &obs.angle,
             &obs.angular_velocity,
             &obs.angular_acceleration,
-        ),
+        ) + Vector2::new(support.acceleration, 0.0),
         support_tension: method.support_tension(),
         constraint_residual: method.constraint_residual(),
         velocity_residual: method.velocity_residual(),
@@ -300,12 +337,8 @@ pub fn run_watched(
     let shared = estimating.is_some() && options.log_rate * dt * STRIDE as f64 <= 1.0;
     let stride = if shared { STRIDE } else { 1 };
     let total_steps = (options.duration / dt).round() as u64;
-    let energy_reference = reference_energy(method);
-    let energy_scale = if energy_reference.abs() >= 0.01 {
-        energy_reference.abs()
-    } else {
-        1.0
-    };
+    let base = EnergyBase::of(method);
+    let (energy_reference, energy_scale) = (base.reference, base.scale);
     // Check the energy about every 1e-3 time units: cheap against the steps between.
     let check_every = ((1e-3 / dt).round() as u64).clamp(1, 1000);
     let mut outcome = Outcome {
@@ -313,10 +346,10 @@ pub fn run_watched(
         time: 0.0,
         energy_reference,
         energy_scale,
-        energy_final: method.energy().total(),
+        energy_final: method.energy_less_work(),
         max_abs_deviation: 0.0,
         frames: 0,
-        tip: geometry::tip(method.angles()),
+        tip: tip_in_the_room(method, method.angles()),
         support_tension: method.support_tension(),
         max_support_tension: (method.support_tension(), method.time()),
         trusted: (method.steps(), method.time()),
@@ -332,13 +365,14 @@ pub fn run_watched(
     // The shape at the last state that passed the checks: what a diverged run's summary
     // describes (its energy and support tension are in `outcome` as of that state).
     let mut trusted_angles = method.angles().to_vec();
+    let mut trusted_support = method.support().position;
     let logging = options.log_rate > 0.0;
     let mut next_frame = 0;
     loop {
         let step = method.steps();
         let at_frame = frame_step(next_frame, options, dt, stride).min(total_steps);
         if logging && at_frame <= step {
-            let mut f = frame(method, &mut obs, energy_reference, energy_scale);
+            let mut f = frame(method, &mut obs, base);
             if let Some(watch) = estimating.as_mut() {
                 estimate(watch, &mut f, &mut outcome);
             }
@@ -366,6 +400,7 @@ pub fn run_watched(
                 break;
             }
             trusted_angles.copy_from_slice(method.angles());
+            trusted_support = method.support().position;
             if stop.is_some_and(|s| s.load(Ordering::Relaxed)) {
                 outcome.cancelled = true;
                 break;
@@ -376,15 +411,20 @@ pub fn run_watched(
     outcome.time = method.time();
     outcome.step_statistics = method.step_statistics();
     if outcome.diverged.is_none() {
-        outcome.energy_final = method.energy().total();
+        outcome.energy_final = method.energy_less_work();
         method.observe(&mut obs);
-        outcome.tip = geometry::tip(&obs.angle);
+        outcome.tip = tip_in_the_room(method, &obs.angle);
         outcome.support_tension = method.support_tension();
         outcome.trusted = (outcome.steps, outcome.time);
     } else {
-        outcome.tip = geometry::tip(&trusted_angles);
+        outcome.tip = geometry::tip(&trusted_angles) + Vector2::new(trusted_support, 0.0);
     }
     outcome
+}
+
+/// The free end of rods at `angles` in the room: from where `method`'s support is now.
+fn tip_in_the_room(method: &dyn Method, angles: &[f64]) -> Point {
+    geometry::tip(angles) + Vector2::new(method.support().position, 0.0)
 }
 
 /// Puts the live error estimate into frame `f`, and what it says into `outcome`.
@@ -427,7 +467,7 @@ pub fn run_to(method: &mut dyn Method, duration: f64) -> Outcome {
 /// Updates the energy statistics and says whether the run has blown up.
 fn watch(method: &dyn Method, energy_reference: f64, outcome: &mut Outcome) -> Option<Diverged> {
     let step = method.steps();
-    let energy = method.energy().total();
+    let energy = method.energy_less_work();
     let deviation = (energy - energy_reference).abs();
     if let Some(residual) = method.constraint_residual() {
         let largest = outcome.max_constraint_residual.unwrap_or(0.0);

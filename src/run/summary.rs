@@ -3,7 +3,8 @@
 
 use super::config::RunPlan;
 use super::estimate::Shadow;
-use super::simulate::{EstimateOutcome, Outcome, REFERENCE_STEP};
+use super::shake_figures::ShakeFigures;
+use super::simulate::{EstimateOutcome, Frame, Outcome, REFERENCE_STEP};
 use super::theory_figures::{FALL_WINDOW, TheoryAt, TheoryFigures};
 use crate::error::Diverged;
 use crate::methods::{MethodKind, StepStatistics};
@@ -30,6 +31,8 @@ pub struct TipSamples {
     free_fall: Option<FreeFall>,
     /// What the frames measured against the scene's theory, where it has one.
     pub theory: TheoryFigures,
+    /// For a shake: the free end's swing and the energy balance.
+    shake: Option<ShakeFigures>,
 }
 
 impl TipSamples {
@@ -40,7 +43,13 @@ impl TipSamples {
             latest: VecDeque::new(),
             free_fall: None,
             theory: TheoryFigures::default(),
+            shake: None,
         }
+    }
+
+    /// Takes a frame of a run whose support moves (nothing under a fixed support).
+    pub fn push_support(&mut self, frame: &Frame) {
+        ShakeFigures::push(&mut self.shake, frame);
     }
 
     /// Adds the tip at `time`, forgetting the oldest sample when full.
@@ -200,6 +209,10 @@ pub struct Summary {
     /// 0.25, 0.5 and 0.75, each against Calkin & March's string (`model::fold`).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub theory: Vec<TheoryAt>,
+    /// For a shake: the free end's largest sideways swing against the linear steady state,
+    /// and the energy balance E − E₀ − W.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shake: Option<ShakeFigures>,
     /// Why the recording could not be completed (e.g. the viewer went away), if it could not.
     pub recording_error: Option<String>,
     /// In a run of several methods side by side: the largest distance, at equal arc length,
@@ -237,12 +250,13 @@ impl Summary {
         };
         let free_fall = tip_samples.free_fall;
         let theory = tip_samples.theory.read();
+        let shake = tip_samples.shake;
         let samples: Vec<[f64; 3]> = tip_samples.latest.into();
         let period = match plan.scene {
             Scene::Mode { .. } => {
                 analysis::period_from_zero_crossings(samples.iter().map(|s| (s[0], s[1])))
             }
-            Scene::Release { .. } | Scene::Fold { .. } => None,
+            Scene::Release { .. } | Scene::Fold { .. } | Scene::Shake { .. } => None,
         };
         let segment_steps = (outcome.steps as f64 * plan.segments as f64).max(1.0);
         Self {
@@ -289,6 +303,7 @@ impl Summary {
             period_theory: plan.scene.mode_period(),
             free_fall,
             theory,
+            shake,
             recording_error,
             method_chosen_because: None,
             disagreement: None,
@@ -462,6 +477,9 @@ impl Summary {
                 (2.0 * at.fall).sqrt(),
                 each.join("; ")
             );
+        }
+        if let Some(f) = self.shake {
+            text += &f.lines(self.initial);
         }
         if let Some(f) = self.free_fall {
             text += &format!(

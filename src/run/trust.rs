@@ -21,8 +21,8 @@ pub fn reference_energy(method: &dyn Method) -> f64 {
     let mut probe = method.box_clone();
     for _ in 0..REFERENCE_STEP {
         if probe.step().is_err() {
-            return method.energy().total();
+            return method.energy_less_work();
         }
     }
-    probe.energy().total()
+    probe.energy_less_work()
 }

@@ -59,6 +59,8 @@ pub enum Topic {
     RecordingIncomplete,
     /// What a study is about to do, and what it wrote.
     Study,
+    /// What a sweep of the shaking frequency found, and where its chart is.
+    Sweep,
     /// A study's result that may mislead (a choice at the grid's edge).
     StudyWarning,
     /// A study's findings: the report itself, in Markdown.
@@ -271,6 +273,10 @@ fn default_method(method: MethodKind, why: DefaultMethod) -> Notice {
             "rope: the fold uses the {method} method: {} (--method to choose another)",
             MethodKind::FOLD_DEFAULT_BECAUSE
         ),
+        DefaultMethod::Shake => format!(
+            "rope: the shake uses the {method} method: {} (--method to choose another)",
+            MethodKind::SHAKE_DEFAULT_BECAUSE
+        ),
     };
     Notice::new(Topic::LastingDefault, text)
 }
@@ -285,6 +291,10 @@ pub fn default_method_because(method: MethodKind, why: DefaultMethod) -> String 
         DefaultMethod::Fold => format!(
             "{method}, the fold's default: {}",
             MethodKind::FOLD_DEFAULT_BECAUSE
+        ),
+        DefaultMethod::Shake => format!(
+            "{method}, the shake's default: {}",
+            MethodKind::SHAKE_DEFAULT_BECAUSE
         ),
     }
 }
@@ -491,6 +501,56 @@ pub fn live_dropped(dropped: u64) -> Notice {
         Topic::LiveDropped,
         format!(
             "rope: {dropped} messages of the live picture were not sent while its viewers were behind (the history and any file are whole)"
+        ),
+    )
+}
+
+/// What a sweep of the shaken support's frequency found: the peaks of the free end's largest
+/// swing against the resonances ω_n of linear theory, its CPU time, and where its chart went
+/// (`chart`), or how to keep one.
+pub fn sweep(
+    frequencies: usize,
+    peaks: &[(f64, f64)],
+    cpu_seconds: f64,
+    chart: Option<&std::path::Path>,
+) -> Notice {
+    // The tallest peak nearer each resonance than any other (the start from rest adds
+    // smaller peaks of its free modes between them).
+    let mut tallest: Vec<(u32, f64, f64)> = Vec::new();
+    for &(omega, swing) in peaks {
+        let n = crate::model::scene::resonance_number(omega);
+        match tallest.iter_mut().find(|t| t.0 == n) {
+            Some(t) if swing > t.2 => *t = (n, omega, swing),
+            Some(_) => {}
+            None => tallest.push((n, omega, swing)),
+        }
+    }
+    let named: Vec<String> = tallest
+        .iter()
+        .map(|&(n, omega, _)| {
+            let resonance = crate::model::bessel::mode_frequency(n);
+            format!(
+                "Ω = {omega:.4} (ω{n} = {resonance:.4}: {:+.2} %)",
+                100.0 * (omega / resonance - 1.0)
+            )
+        })
+        .collect();
+    let found = if named.is_empty() {
+        "no peak within the sweep".to_owned()
+    } else {
+        format!(
+            "the tallest peak of the free end's largest swing nearest each resonance at {}",
+            named.join(", ")
+        )
+    };
+    let kept = match chart {
+        Some(path) => format!("its chart and CSV: {}.png, .svg, .csv", path.display()),
+        None => "give --save FILE.rrd to keep its chart and CSV beside the recording".to_owned(),
+    };
+    Notice::new(
+        Topic::Sweep,
+        format!(
+            "rope: sweep of {frequencies} frequencies in {cpu_seconds:.1} s of CPU simulating: {found}; {kept}"
         ),
     )
 }

@@ -7,6 +7,7 @@ use super::notices::{self, Listener};
 use super::{ServiceError, Session};
 use crate::cli::{RunArgs, check_writable_file};
 use crate::methods::MethodKind;
+use crate::model::{Scene, analysis};
 use crate::plan::Planned;
 use crate::plan::pilot::Basis;
 use crate::recording::blueprint;
@@ -17,6 +18,7 @@ use crate::recording::logger::RopeLogger;
 use crate::recording::viewer_sinks::ViewerLink;
 use crate::run::progress::Progress;
 use crate::run::{Status, Summary};
+use crate::study::sweep_chart;
 use anyhow::Context as _;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -48,9 +50,10 @@ pub fn run(args: &RunArgs, session: &Session) -> Result<Outcome, ServiceError> {
     let headline = shared_headline(&plans);
     let lanes = plans.first().map(Planned::lanes).unwrap_or_default();
     let rates = args.output.history_rates();
+    let sweep = is_sweep(&plans);
     let layouts = Layouts {
-        everything: blueprint::blueprint(headline.as_deref(), &lanes),
-        live: blueprint::live(headline.as_deref(), &lanes, rates.shape_interval()),
+        everything: blueprint::blueprint(headline.as_deref(), &lanes, sweep),
+        live: blueprint::live(headline.as_deref(), &lanes, rates.shape_interval(), sweep),
     };
     if let Some(path) = args.output.misnamed_file() {
         tell(notices::misnamed_file(path));
@@ -103,7 +106,25 @@ pub fn run(args: &RunArgs, session: &Session) -> Result<Outcome, ServiceError> {
             Arc::clone(&session.listener),
         );
     }
-    let (mut summary, strayed) = run_passes(args, &plans, &mut loggers, session)?;
+    let (mut summary, strayed, swept) = run_passes(args, &plans, &mut loggers, session)?;
+    if swept.points.len() >= 2 {
+        let chart = args.output.save.as_deref().map(|save| {
+            let stem = save.file_stem().unwrap_or_default().to_string_lossy();
+            save.with_file_name(format!("{stem}-sweep"))
+        });
+        if let Some(chart) = &chart {
+            let dir = chart.parent().unwrap_or(std::path::Path::new("."));
+            let name = chart.file_name().unwrap_or_default().to_string_lossy();
+            sweep_chart::write(dir, &name, swept.amplitude, &swept.points)
+                .context("writing the sweep's chart")?;
+        }
+        tell(notices::sweep(
+            swept.points.len(),
+            &analysis::peaks(&swept.points),
+            swept.cpu_seconds,
+            chart.as_deref(),
+        ));
+    }
     if let Some(reason) = lost_viewer(&output) {
         summary.recording_error = Some(format!(
             "{reason} (the run reached t = {:.3})",
@@ -165,14 +186,36 @@ fn shared_headline(plans: &[Planned]) -> Option<String> {
     }
 }
 
+/// Whether the plans are a sweep of the shaken support's frequency: several shakes, each of
+/// one method.
+fn is_sweep(plans: &[Planned]) -> bool {
+    plans.len() > 1
+        && plans
+            .iter()
+            .all(|p| p.others.is_empty() && matches!(p.plan.scene, Scene::Shake { .. }))
+}
+
+/// A sweep of the shaking frequency as it goes: each run's Ω and the free end's largest
+/// swing, for a support of `amplitude`, and the CPU time of its runs.
+#[derive(Debug, Default)]
+struct Swept {
+    amplitude: f64,
+    points: Vec<(f64, f64)>,
+    cpu_seconds: f64,
+}
+
 /// Runs the plans in turn, `--loop` times over, until one does not end well or the session
-/// is stopped. Returns the last run's summary, and the method whose energy strayed most.
+/// is stopped. Returns the last run's summary, the method whose energy strayed most, and
+/// for a sweep of the shaking frequency what its first pass found (drawn in the viewer as
+/// each run ends).
 fn run_passes(
     args: &RunArgs,
     plans: &[Planned],
     logger: &mut Vec<RopeLogger>,
     session: &Session,
-) -> anyhow::Result<(Summary, Strayed)> {
+) -> anyhow::Result<(Summary, Strayed, Swept)> {
+    let sweep = is_sweep(plans);
+    let mut swept = Swept::default();
     let stop: &AtomicBool = &session.stop;
     let several = plans.len() > 1 || args.passes() != Some(1);
     let mut last = None;
@@ -216,6 +259,26 @@ fn run_passes(
                 summary.method_chosen_because =
                     Some(notices::default_method_because(summary.method, why));
             }
+            if let (
+                true,
+                1,
+                Scene::Shake {
+                    amplitude,
+                    frequency,
+                    ..
+                },
+                Some(f),
+            ) = (sweep, pass, plan.scene, summary.shake)
+            {
+                swept.amplitude = amplitude;
+                swept.points.push((frequency, f.tip_amplitude));
+                swept.cpu_seconds += summary.cpu_seconds;
+                for logger in logger.iter() {
+                    logger
+                        .log_sweep(amplitude, &swept.points)
+                        .context("logging the sweep")?;
+                }
+            }
             if several {
                 // Each run of several says all it has as it ends; the last is not repeated.
                 session.listener.tell(summary_notice(&summary));
@@ -244,7 +307,7 @@ fn run_passes(
             }
         }
     }
-    Ok((last.context("no run was made")?, strayed))
+    Ok((last.context("no run was made")?, strayed, swept))
 }
 
 /// The summary of methods side by side: the first one's fields, and each one's under

@@ -30,6 +30,7 @@ pub mod record;
 pub mod reference;
 pub mod report;
 pub mod shard;
+pub mod sweep_chart;
 pub mod tolerance_chart;
 pub mod tolerance_check;
 pub mod trajectory;
