@@ -319,3 +319,51 @@ fn a_fold_runs_the_midpoint_by_default_and_a_bend_of_too_few_rods_is_warned() {
         "four rods across at N = 100"
     );
 }
+
+#[test]
+fn a_shake_draws_its_support_moving_and_its_balance_and_a_release_sends_neither() {
+    let record = |flags: &[&str]| {
+        let mut args = run_args(flags);
+        let memory = InMemory::default();
+        args.output.memory = Some(memory.clone());
+        let (session, _) = listened();
+        let outcome = run::run(&args, &session).expect("the run is made");
+        assert_eq!(outcome.exit_status, 0);
+        let mut recording = Recording::default();
+        for msg in memory.messages() {
+            recording.add(msg);
+        }
+        (outcome, recording)
+    };
+    let (outcome, shake) = record(&[
+        "--scene",
+        "shake",
+        "--segments",
+        "20",
+        "--duration",
+        "2",
+        "--amplitude",
+        "0.02",
+    ]);
+    // The support moves in the room, a frame at a time, and the rope hangs from it.
+    assert_eq!(
+        shake.temporal_rows("rope/support_now") as u64,
+        outcome.summary.frames_logged
+    );
+    let balance = shake.scalars("energy/balance");
+    assert_eq!(balance.len() as u64, outcome.summary.frames_logged);
+    assert!(balance.iter().all(|b| b.abs() < 1e-12), "{balance:?}");
+    assert!(shake.has("theory/tip_sideways/steady_state"));
+    let figures = outcome.summary.shake.expect("a shake's figures");
+    assert!(figures.relative_error.abs() < 0.05, "{figures:?}");
+    let (_, release) = record(&["--segments", "20", "--duration", "2"]);
+    for entity in [
+        "rope/support_now",
+        "energy/balance",
+        "energy/support_work",
+        "theory/tip_sideways/measured",
+    ] {
+        // (Their styling is static, logged for every recording: no value is sent.)
+        assert_eq!(release.temporal_rows(entity), 0, "{entity}");
+    }
+}

@@ -31,8 +31,9 @@ pub mod path {
     pub const GAINED: &str = "energy/gained";
     pub const BALANCE: &str = "energy/balance";
     pub const LOG_BALANCE: &str = "log10/energy_balance";
-    /// A shaken support's track, ±A about the origin.
+    /// A shaken support's track, ±A about the origin, and where the support is now.
     pub const SUPPORT_TRACK: &str = "rope/support_track";
+    pub const SUPPORT_NOW: &str = "rope/support_now";
     pub const SUPPORT_TENSION: &str = "support/tension";
     pub const TIP_SPEED: &str = "tip/speed";
     pub const TIP_ACCELERATION: &str = "tip/acceleration";

@@ -8,8 +8,8 @@ use super::error::RecordingError;
 use super::lane_log::{LaneLog, style_of};
 use super::live::{HistoryRates, Keeping, LivePicture};
 use super::shapes::{
-    ROPE_RADIUS, SharedShapes, ThenShape, advance_trail, send_profiles, send_rope, send_tips,
-    send_trails, then_label, xy,
+    ROPE_RADIUS, SharedShapes, ThenShape, advance_trail, send_moving_support, send_profiles,
+    send_rope, send_tips, send_trails, then_label, xy,
 };
 use super::styling;
 use crate::error::Diverged;
@@ -294,6 +294,7 @@ impl RopeLogger {
             let times = self.frame_times(&frames);
             send_rope(&self.rec, path::SEGMENTS, &frames, times.clone())?;
             send_tips(&self.rec, path::TIP, tips, times.clone())?;
+            send_moving_support(&self.rec, &frames, times.clone())?;
             send_trails(&self.rec, path::TRAIL, trails, times.clone())?;
             send_profiles(&self.rec, path::PROFILE, &frames, times)?;
         } else {
@@ -312,6 +313,7 @@ impl RopeLogger {
             let rec = &live.rec;
             send_rope(rec, path::SEGMENTS, &[last], Vec::new())?;
             send_tips(rec, path::TIP, vec![xy(&last.tip())], Vec::new())?;
+            send_moving_support(rec, &[last], Vec::new())?;
             send_trails(rec, path::TRAIL, vec![trail], Vec::new())?;
             send_profiles(rec, path::PROFILE, &[last], Vec::new())?;
             self.log_live_caption(self.time_offset + last.time)?;

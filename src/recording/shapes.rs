@@ -3,6 +3,7 @@
 //! `logger.rs` decides when each is sent; this file knows how each is drawn.
 
 use super::colour::{SHADE, hue_shade, shaded_strips, tension_colour};
+use super::entities::path;
 use crate::model::Point;
 use crate::run::Frame;
 use rerun::RecordingStream;
@@ -84,6 +85,23 @@ pub(super) fn send_tips(
             .with_positions(tips)
             .columns_of_unit_batches()?,
     )
+}
+
+/// Where a moving support is at each frame, at `times` (none: static, one row); nothing for
+/// frames under a fixed support, which the static support point marks.
+pub(super) fn send_moving_support(
+    rec: &RecordingStream,
+    frames: &[&Frame],
+    times: Vec<rerun::TimeColumn>,
+) -> rerun::RecordingStreamResult<()> {
+    if frames.iter().all(|f| f.balance.is_none()) {
+        return Ok(());
+    }
+    let supports: Vec<[f32; 2]> = frames
+        .iter()
+        .map(|f| f.nodes.first().map_or([0.0, 0.0], xy))
+        .collect();
+    send_tips(rec, path::SUPPORT_NOW, supports, times)
 }
 
 /// A trail per row, at `times` (none: static, one row).

@@ -128,6 +128,14 @@ pub(super) fn log_support_track(
     )?;
     rec.log_static(
         path::SUPPORT,
-        &rerun::Points2D::update_fields().with_labels([format!("support, shaken ±{amplitude}")]),
+        &rerun::Points2D::update_fields()
+            .with_radii([0.008])
+            .with_labels([format!("support, shaken ±{amplitude}")]),
+    )?;
+    rec.log_static(
+        path::SUPPORT_NOW,
+        &rerun::Points2D::update_fields()
+            .with_radii([0.02])
+            .with_colors([rerun::Color::from_rgb(90, 90, 90)]),
     )
 }
