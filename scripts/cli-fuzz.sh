@@ -62,6 +62,7 @@ study_args() {
     ((RANDOM % 3 == 0)) && add --angle 0 1 30 90 30 60 91 -5 nan x
     ((RANDOM % 6 == 0)) && args+=(--scene mode) && add --mode-number 1 2 0 && add --amplitude 0.05 0 nan
     ((RANDOM % 12 == 0)) && args+=(--scene fold) && add --gap 0.04 0 nan
+    ((RANDOM % 12 == 0)) && args+=(--scene shake) && add --frequency 2 0.6 1.2024 0 nan
     ((RANDOM % 6 == 0)) && add --max-memory 1MB 100MB 1KB 50% 0 x
     ((RANDOM % 8 == 0)) && add --save "$scratch/study.rrd" /dev/null/s.rrd
     true
@@ -122,9 +123,20 @@ for ((r = 1; r <= runs; r++)); do
         args+=(--scene fold)
         ((RANDOM % 2)) && add --gap "${numbers[@]}" 0.02 0.04 0.63 0.64
         ((RANDOM % 8 == 0)) && add --angle "${numbers[@]}"
+    elif ((RANDOM % 5 == 0)); then
+        args+=(--scene shake)
+        ((RANDOM % 2)) && add --amplitude "${numbers[@]}" 1e-3 0.01 0.05 0.06
+        if ((RANDOM % 3)); then
+            ((RANDOM % 2)) && add --frequency "${numbers[@]}" 1.2024 2 "0.6,2" 20 21
+        else
+            add --sweep 0.2..5:3 1..2 5..0.2 0.2..5:1 0..5 0.2..30 x "" 1..2:x 0.5..0.6:50
+        fi
+        ((RANDOM % 3 == 0)) && add --from steady rest x
+        ((RANDOM % 8 == 0)) && add --gap "${numbers[@]}"
     else
         ((RANDOM % 3 == 0)) && add --angle "${numbers[@]}" "0,30" "30,60,90"
         ((RANDOM % 12 == 0)) && add --gap 0.02 nan
+        ((RANDOM % 12 == 0)) && add --frequency 2 nan
     fi
     ((RANDOM % 4 == 0)) && add --log-rate "${numbers[@]}" 60 1000
     ((RANDOM % 5 == 0)) && add --tolerance "${numbers[@]}" 1e-2 3e-3 1e-12
