@@ -140,6 +140,11 @@ impl Chain {
         Ok(chain)
     }
 
+    /// The sideways momentum in the support's frame (equal rods).
+    fn momentum_x(&self) -> f64 {
+        geometry::momentum(&self.phi, &self.omega).x
+    }
+
     /// The rods' lengths: graded, or all 1/N.
     pub fn lengths(&self) -> Vec<f64> {
         let n = self.phi.len();
@@ -311,19 +316,12 @@ impl Method for Chain {
                 (self.phi[i], self.omega[i], length[i])
             }),
         };
-        if !self.ledger.moves() {
-            return in_frame;
-        }
-        let momentum = geometry::momentum(&self.phi, &self.omega).x;
-        self.ledger.in_the_room(in_frame, self.time(), momentum)
+        self.ledger
+            .in_the_room(in_frame, self.time(), || self.momentum_x())
     }
 
-    fn support(&self) -> SupportNow {
-        if !self.ledger.moves() {
-            return SupportNow::default();
-        }
-        let momentum = geometry::momentum(&self.phi, &self.omega).x;
-        self.ledger.now(self.time(), momentum)
+    fn support(&self) -> Option<SupportNow> {
+        self.ledger.now(self.time(), || self.momentum_x())
     }
 
     fn support_tension(&self) -> f64 {

@@ -70,16 +70,16 @@ pub trait Method: Send {
     /// Total energy now (eqs. 13–16), second-order accurate in the time step, in the room
     /// (under a shaken support, the kinetic energy of the support's motion included).
     fn energy(&self) -> Energy;
-    /// The support now: where it is in the room, how it moves, and the work W it has done on
-    /// the string since the start. A fixed support at the origin, doing no work, for a method
-    /// that carries none other.
-    fn support(&self) -> SupportNow {
-        SupportNow::default()
+    /// A moving support now: where it is in the room, how it moves, and the work W it has
+    /// done on the string since the start. `None` for a support fixed at the origin (for a
+    /// method that carries no other, always).
+    fn support(&self) -> Option<SupportNow> {
+        None
     }
     /// E − W: what the string's energy would be had the support done no work, which the ideal
     /// string keeps (E itself under a fixed support). Its change is the balance E − E₀ − W.
     fn energy_less_work(&self) -> f64 {
-        self.energy().total() - self.support().work
+        self.energy().total() - self.support().map_or(0.0, |s| s.work)
     }
     /// The tension at the support, s = 0, from the latest solve: the force the support
     /// bears along the string (a string hanging at rest: m g = 1, whatever N). Not the first

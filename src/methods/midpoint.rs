@@ -688,18 +688,12 @@ impl Method for Midpoint {
     /// From the method's own velocities (projected onto the joints at the end of every driver
     /// step), in the room.
     fn energy(&self) -> Energy {
-        if !self.ledger.moves() {
-            return self.energy_in_frame();
-        }
         self.ledger
-            .in_the_room(self.energy_in_frame(), self.clock, self.momentum_x())
+            .in_the_room(self.energy_in_frame(), self.clock, || self.momentum_x())
     }
 
-    fn support(&self) -> SupportNow {
-        if !self.ledger.moves() {
-            return SupportNow::default();
-        }
-        self.ledger.now(self.clock, self.momentum_x())
+    fn support(&self) -> Option<SupportNow> {
+        self.ledger.now(self.clock, || self.momentum_x())
     }
 
     fn support_tension(&self) -> f64 {

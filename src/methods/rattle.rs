@@ -453,17 +453,11 @@ impl Method for Rattle {
             e.rotational += self.now.spin[i] * self.now.spin[i] / (2.0 * inertia);
             e.potential -= h * self.now.centre[i].y;
         }
-        if !self.ledger.moves() {
-            return e;
-        }
-        self.ledger.in_the_room(e, self.clock, self.momentum_x())
+        self.ledger.in_the_room(e, self.clock, || self.momentum_x())
     }
 
-    fn support(&self) -> SupportNow {
-        if !self.ledger.moves() {
-            return SupportNow::default();
-        }
-        self.ledger.now(self.clock, self.momentum_x())
+    fn support(&self) -> Option<SupportNow> {
+        self.ledger.now(self.clock, || self.momentum_x())
     }
 
     fn support_tension(&self) -> f64 {

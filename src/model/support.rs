@@ -104,15 +104,29 @@ pub struct SupportLedger {
     start: f64,
 }
 
-/// The support at one instant, for output: where it is in the room, how it moves, and the work
-/// it has done on the string since the start.
+/// A moving support at one instant, for output: where it is in the room, how it moves, and
+/// the work it has done on the string since the start.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SupportNow {
     pub position: f64,
     pub velocity: f64,
     pub acceleration: f64,
-    /// W(t); zero for a fixed support.
+    /// W(t).
     pub work: f64,
+}
+
+impl SupportNow {
+    /// What carries the string's points from the support's frame into the room, sideways.
+    pub fn offset(&self) -> Vector2<f64> {
+        Vector2::new(self.position, 0.0)
+    }
+}
+
+/// Carries `points` drawn from the support into the room, where `support` (if it moves) is.
+pub fn into_the_room(support: Option<SupportNow>, points: &mut [super::geometry::Point]) {
+    if let Some(s) = support {
+        points.iter_mut().for_each(|p| *p += s.offset());
+    }
 }
 
 impl SupportLedger {
@@ -155,30 +169,36 @@ impl SupportLedger {
         self.inertial
     }
 
-    /// The support at `time`, for a string of sideways momentum `momentum_x` in its frame.
-    pub fn now(&self, time: f64, momentum_x: f64) -> SupportNow {
+    /// The support at `time`, for a string whose sideways momentum in the support's frame
+    /// `momentum_x` gives (asked only where the support moves); `None` for a fixed support.
+    pub fn now(&self, time: f64, momentum_x: impl FnOnce() -> f64) -> Option<SupportNow> {
         if !self.moves() {
-            return SupportNow::default();
+            return None;
         }
         let v = self.support.velocity(time);
-        SupportNow {
+        Some(SupportNow {
             position: self.support.position(time),
             velocity: v,
             acceleration: self.support.acceleration(time),
-            work: v * momentum_x + 0.5 * v * v - self.start - self.inertial,
-        }
+            work: v * momentum_x() + 0.5 * v * v - self.start - self.inertial,
+        })
     }
 
     /// The energy in the room from `frame`, the energy in the support's frame at `time`, of a
-    /// string of sideways momentum `momentum_x` there (mass 1): the translational part gains
-    /// ẋ_s P′ + ẋ_s²/2.
-    pub fn in_the_room(&self, frame: Energy, time: f64, momentum_x: f64) -> Energy {
+    /// string whose sideways momentum there `momentum_x` gives (mass 1; asked only where the
+    /// support moves): the translational part gains ẋ_s P′ + ẋ_s²/2.
+    pub fn in_the_room(
+        &self,
+        frame: Energy,
+        time: f64,
+        momentum_x: impl FnOnce() -> f64,
+    ) -> Energy {
         if !self.moves() {
             return frame;
         }
         let v = self.support.velocity(time);
         Energy {
-            translational: frame.translational + v * momentum_x + 0.5 * v * v,
+            translational: frame.translational + v * momentum_x() + 0.5 * v * v,
             ..frame
         }
     }
@@ -192,13 +212,13 @@ mod tests {
     fn a_fixed_support_does_no_work_and_adds_nothing_to_the_energy() {
         let mut ledger = SupportLedger::new(Support::Fixed, 0.3);
         ledger.step(0.0, 0.1, 0.2);
-        assert_eq!(ledger.now(1.0, 0.5), SupportNow::default());
+        assert_eq!(ledger.now(1.0, || 0.5), None);
         let e = Energy {
             translational: 0.25,
             rotational: 0.01,
             potential: -0.5,
         };
-        assert_eq!(ledger.in_the_room(e, 1.0, 0.5).total(), e.total());
+        assert_eq!(ledger.in_the_room(e, 1.0, || 0.5).total(), e.total());
         assert_eq!(Support::Fixed.gravity(2.0), Vector2::new(0.0, 1.0));
     }
 
@@ -235,8 +255,8 @@ mod tests {
         };
         let ledger = SupportLedger::new(support, 0.0);
         let t = 0.7;
-        let e = ledger.in_the_room(Energy::default(), t, 0.0);
-        let w = ledger.now(t, 0.0).work;
+        let e = ledger.in_the_room(Energy::default(), t, || 0.0);
+        let w = ledger.now(t, || 0.0).expect("a moving support").work;
         let (v0, v) = (support.velocity(0.0), support.velocity(t));
         assert!((w - (v * v - v0 * v0) / 2.0).abs() < 1e-15);
         assert!((e.total() - v * v / 2.0).abs() < 1e-15);

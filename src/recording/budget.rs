@@ -214,16 +214,12 @@ fn sample_frame(plan: &RunPlan, step: u64, time: f64, lane: Option<usize>) -> Fr
         },
         energy_deviation: 1e-9 * time.cos(),
         // A moving support's series (its work and the balance) as a shake sends them.
-        support: if plan.scene.support().moves() {
-            SupportNow {
-                position: 1e-3 * time.sin(),
-                velocity: 1e-3 * time.cos(),
-                acceleration: -1e-3 * time.sin(),
-                work: 1e-4 * time.sin(),
-            }
-        } else {
-            SupportNow::default()
-        },
+        support: plan.scene.support().moves().then_some(SupportNow {
+            position: 1e-3 * time.sin(),
+            velocity: 1e-3 * time.cos(),
+            acceleration: -1e-3 * time.sin(),
+            work: 1e-4 * time.sin(),
+        }),
         balance: plan.scene.support().moves().then_some(1e-12 * time.cos()),
         tip_velocity: Vector2::new(time.cos(), time.sin()),
         tip_acceleration: Vector2::new(-time.sin(), time.cos()),

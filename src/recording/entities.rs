@@ -258,13 +258,17 @@ pub const SERIES: [Series; 33] = [
         path::SUPPORT_WORK,
         "W, the support's work",
         [40, 150, 200],
-        |f| f.balance.map_or(f64::NAN, |_| f.support.work),
+        |f| f.support.map_or(f64::NAN, |s| s.work),
     ),
     (
         path::GAINED,
         "E − E₀, the energy gained",
         [230, 120, 30],
-        |f| f.balance.map_or(f64::NAN, |b| b + f.support.work),
+        |f| {
+            f.balance
+                .zip(f.support)
+                .map_or(f64::NAN, |(b, s)| b + s.work)
+        },
     ),
     (path::BALANCE, "E − E₀ − W", [200, 40, 40], |f| {
         f.balance.unwrap_or(f64::NAN)
@@ -291,7 +295,7 @@ pub const SERIES: [Series; 33] = [
         path::SIDEWAYS_SUPPORT,
         "support x_s = A sin Ωt",
         [125, 125, 125],
-        |f| f.balance.map_or(f64::NAN, |_| f.support.position),
+        |f| f.support.map_or(f64::NAN, |s| s.position),
     ),
 ];
 

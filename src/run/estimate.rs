@@ -105,8 +105,7 @@ impl Shadow {
         }
         geometry::nodes(self.method.angles(), &mut self.nodes);
         // In the room, as the run's nodes are.
-        let carried = nalgebra::Vector2::new(self.method.support().position, 0.0);
-        self.nodes.iter_mut().for_each(|p| *p += carried);
+        crate::model::support::into_the_room(self.method.support(), &mut self.nodes);
         let tip = nodes.last().copied().unwrap_or_else(Point::origin);
         let shadow_tip = self.nodes.last().copied().unwrap_or_else(Point::origin);
         let half = self.nodes.len().saturating_sub(1).max(1) as f64;

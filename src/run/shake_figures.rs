@@ -28,7 +28,7 @@ impl ShakeFigures {
     /// Takes a frame into `figures`: the free end's sideways excursion in the room, the
     /// balance and the support's work (nothing for a frame under a fixed support).
     pub fn push(figures: &mut Option<Self>, frame: &Frame) {
-        let Some(balance) = frame.balance else {
+        let (Some(balance), Some(support)) = (frame.balance, frame.support) else {
             return;
         };
         let sideways = frame
@@ -51,7 +51,7 @@ impl ShakeFigures {
         }
         figures.relative_error = figures.tip_amplitude / figures.predicted_amplitude - 1.0;
         figures.max_abs_balance = figures.max_abs_balance.max(balance.abs());
-        figures.work = frame.support.work;
+        figures.work = support.work;
     }
 
     /// The summary's lines for a run from `scene`.

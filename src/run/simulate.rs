@@ -8,8 +8,9 @@ use crate::error::Diverged;
 use crate::methods::{
     Method, MethodKind, Observation, StepStatistics, stability_hint, whole_division,
 };
+use crate::model::Scene;
 use crate::model::geometry::{self, Energy, Point};
-use crate::model::{Scene, SupportNow};
+use crate::model::support::{self, SupportNow};
 use nalgebra::Vector2;
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -69,8 +70,9 @@ pub struct Frame {
     /// (E − W − E_ref) / scale, E_ref the same after [`REFERENCE_STEP`] steps, W the work the
     /// support has done (none unless it moves).
     pub energy_deviation: f64,
-    /// The support: where it is, how it moves, and the work it has done since the start.
-    pub support: SupportNow,
+    /// A moving support: where it is, how it moves, and the work it has done since the
+    /// start; `None` for a fixed one.
+    pub support: Option<SupportNow>,
     /// E − E₀ − W, E₀ the energy at the start: what the energy gained beyond the support's
     /// work (zero for the ideal string); `None` under a fixed support, where it is E − E₀.
     pub balance: Option<f64>,
@@ -216,14 +218,11 @@ pub fn frame(method: &mut dyn Method, obs: &mut Observation, base: EnergyBase) -
     let support = method.support();
     let mut nodes = Vec::with_capacity(obs.angle.len() + 1);
     geometry::nodes(&obs.angle, &mut nodes);
-    let carried = Vector2::new(support.position, 0.0);
-    let moving = Vector2::new(support.velocity, 0.0);
-    if support.position != 0.0 {
-        nodes.iter_mut().for_each(|p| *p += carried);
-    }
+    support::into_the_room(support, &mut nodes);
+    let moving = Vector2::new(support.map_or(0.0, |s| s.velocity), 0.0);
     let energy = method.energy();
     let first_at = method.descriptor().tension_first_at;
-    let kept = energy.total() - support.work;
+    let kept = method.energy_less_work();
     Frame {
         step: method.steps(),
         time: method.time(),
@@ -232,7 +231,7 @@ pub fn frame(method: &mut dyn Method, obs: &mut Observation, base: EnergyBase) -
         tension_first_at: first_at,
         energy,
         energy_deviation: (kept - base.reference) / base.scale,
-        balance: (support != SupportNow::default()).then_some(kept - base.start),
+        balance: support.map(|_| kept - base.start),
         support,
         tip_velocity: geometry::tip_velocity(&obs.angle, &obs.angular_velocity) + moving,
         momentum: geometry::momentum(&obs.angle, &obs.angular_velocity) + moving,
@@ -240,7 +239,7 @@ pub fn frame(method: &mut dyn Method, obs: &mut Observation, base: EnergyBase) -
             &obs.angle,
             &obs.angular_velocity,
             &obs.angular_acceleration,
-        ) + Vector2::new(support.acceleration, 0.0),
+        ) + Vector2::new(support.map_or(0.0, |s| s.acceleration), 0.0),
         support_tension: method.support_tension(),
         constraint_residual: method.constraint_residual(),
         velocity_residual: method.velocity_residual(),
@@ -349,7 +348,7 @@ pub fn run_watched(
         energy_final: method.energy_less_work(),
         max_abs_deviation: 0.0,
         frames: 0,
-        tip: tip_in_the_room(method, method.angles()),
+        tip: tip_in_the_room(method.support(), method.angles()),
         support_tension: method.support_tension(),
         max_support_tension: (method.support_tension(), method.time()),
         trusted: (method.steps(), method.time()),
@@ -365,7 +364,7 @@ pub fn run_watched(
     // The shape at the last state that passed the checks: what a diverged run's summary
     // describes (its energy and support tension are in `outcome` as of that state).
     let mut trusted_angles = method.angles().to_vec();
-    let mut trusted_support = method.support().position;
+    let mut trusted_support = method.support();
     let logging = options.log_rate > 0.0;
     let mut next_frame = 0;
     loop {
@@ -400,7 +399,7 @@ pub fn run_watched(
                 break;
             }
             trusted_angles.copy_from_slice(method.angles());
-            trusted_support = method.support().position;
+            trusted_support = method.support();
             if stop.is_some_and(|s| s.load(Ordering::Relaxed)) {
                 outcome.cancelled = true;
                 break;
@@ -413,18 +412,20 @@ pub fn run_watched(
     if outcome.diverged.is_none() {
         outcome.energy_final = method.energy_less_work();
         method.observe(&mut obs);
-        outcome.tip = tip_in_the_room(method, &obs.angle);
+        outcome.tip = tip_in_the_room(method.support(), &obs.angle);
         outcome.support_tension = method.support_tension();
         outcome.trusted = (outcome.steps, outcome.time);
     } else {
-        outcome.tip = geometry::tip(&trusted_angles) + Vector2::new(trusted_support, 0.0);
+        outcome.tip = tip_in_the_room(trusted_support, &trusted_angles);
     }
     outcome
 }
 
-/// The free end of rods at `angles` in the room: from where `method`'s support is now.
-fn tip_in_the_room(method: &dyn Method, angles: &[f64]) -> Point {
-    geometry::tip(angles) + Vector2::new(method.support().position, 0.0)
+/// The free end of rods at `angles` in the room, hanging from `support` (if it moves).
+fn tip_in_the_room(support: Option<SupportNow>, angles: &[f64]) -> Point {
+    let mut tip = [geometry::tip(angles)];
+    support::into_the_room(support, &mut tip);
+    tip[0]
 }
 
 /// Puts the live error estimate into frame `f`, and what it says into `outcome`.
