@@ -343,8 +343,15 @@ impl Summary {
         } else {
             "final".to_owned()
         };
+        // Under a moving support the energy changes by the support's work: what is kept is
+        // E − W.
+        let kept = if self.initial.support().moves() {
+            "E − W"
+        } else {
+            "energy"
+        };
         text += &format!(
-            "  energy: E_ref = {} (after step {REFERENCE_STEP}), {last} {}, max deviation {:.3e} ({:.3e} relative)\n",
+            "  {kept}: E_ref = {} (after step {REFERENCE_STEP}), {last} {}, max deviation {:.3e} ({:.3e} relative)\n",
             fixed(self.energy.reference),
             fixed(self.energy.r#final),
             self.energy.max_abs_deviation,
