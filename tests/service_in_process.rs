@@ -220,9 +220,10 @@ fn a_study_none_of_whose_methods_can_start_is_refused_naming_the_flag() {
     }
 }
 
-#[test]
-fn every_frame_of_a_run_reaches_a_destination_in_memory() {
-    let mut args = run_args(&["--method", "chain", "--segments", "20", "--duration", "2"]);
+/// `rope run` with `flags` into a recording in memory, which must end well: its outcome and
+/// what the recording holds.
+fn record_in_memory(flags: &[&str]) -> (run::Outcome, Recording) {
+    let mut args = run_args(flags);
     let memory = InMemory::default();
     args.output.memory = Some(memory.clone());
     let (session, _) = listened();
@@ -232,6 +233,13 @@ fn every_frame_of_a_run_reaches_a_destination_in_memory() {
     for msg in memory.messages() {
         recording.add(msg);
     }
+    (outcome, recording)
+}
+
+#[test]
+fn every_frame_of_a_run_reaches_a_destination_in_memory() {
+    let (outcome, recording) =
+        record_in_memory(&["--method", "chain", "--segments", "20", "--duration", "2"]);
     // 60 frames a time unit from t = 0 to 2, each the rope's segments once.
     assert_eq!(outcome.summary.frames_logged, 121);
     assert_eq!(
@@ -322,20 +330,7 @@ fn a_fold_runs_the_midpoint_by_default_and_a_bend_of_too_few_rods_is_warned() {
 
 #[test]
 fn a_shake_draws_its_support_moving_and_its_balance_and_a_release_sends_neither() {
-    let record = |flags: &[&str]| {
-        let mut args = run_args(flags);
-        let memory = InMemory::default();
-        args.output.memory = Some(memory.clone());
-        let (session, _) = listened();
-        let outcome = run::run(&args, &session).expect("the run is made");
-        assert_eq!(outcome.exit_status, 0);
-        let mut recording = Recording::default();
-        for msg in memory.messages() {
-            recording.add(msg);
-        }
-        (outcome, recording)
-    };
-    let (outcome, shake) = record(&[
+    let (outcome, shake) = record_in_memory(&[
         "--scene",
         "shake",
         "--segments",
@@ -356,7 +351,7 @@ fn a_shake_draws_its_support_moving_and_its_balance_and_a_release_sends_neither(
     assert!(shake.has("theory/tip_sideways/steady_state"));
     let figures = outcome.summary.shake.expect("a shake's figures");
     assert!(figures.relative_error.abs() < 0.05, "{figures:?}");
-    let (_, release) = record(&["--segments", "20", "--duration", "2"]);
+    let (_, release) = record_in_memory(&["--segments", "20", "--duration", "2"]);
     for entity in [
         "rope/support_now",
         "energy/balance",
