@@ -362,3 +362,60 @@ fn a_shake_draws_its_support_moving_and_its_balance_and_a_release_sends_neither(
         assert_eq!(release.temporal_rows(entity), 0, "{entity}");
     }
 }
+
+#[test]
+fn a_sweep_draws_its_curve_writes_its_chart_beside_the_file_and_finds_the_first_resonance() {
+    let dir = scratch("sweep");
+    let file = dir.join("s.rrd");
+    let args = run_args(&[
+        "--scene",
+        "shake",
+        "--from",
+        "rest",
+        "--amplitude",
+        "1e-3",
+        "--sweep",
+        "0.9..1.5:13",
+        "--duration",
+        "40",
+        "--segments",
+        "20",
+        "--save",
+        file.to_str().unwrap(),
+    ]);
+    let (session, heard) = listened();
+    let outcome = run::run(&args, &session).expect("the sweep is made");
+    assert_eq!(outcome.exit_status, 0);
+    // The chart and its data beside the recording: a row per frequency.
+    let csv = std::fs::read_to_string(dir.join("s-sweep.csv")).expect("the sweep's CSV");
+    assert_eq!(csv.lines().count(), 1 + 13, "{csv}");
+    for chart in ["s-sweep.png", "s-sweep.svg"] {
+        assert!(dir.join(chart).exists(), "{chart}");
+    }
+    // The tallest peak is the first resonance's, within a grid step (0.05) of ω₁ = 1.2024.
+    let rows: Vec<(f64, f64)> = csv
+        .lines()
+        .skip(1)
+        .map(|line| {
+            let mut cells = line.split(',').map(|c| c.parse::<f64>().unwrap());
+            (cells.next().unwrap(), cells.next().unwrap())
+        })
+        .collect();
+    let tallest = rows
+        .iter()
+        .copied()
+        .fold((0.0, 0.0), |a, b| if b.1 > a.1 { b } else { a });
+    assert!((tallest.0 - 1.2024).abs() <= 0.05, "{rows:?}");
+    let said = heard
+        .notices()
+        .into_iter()
+        .find(|n| n.topic == Topic::Sweep)
+        .expect("the sweep's notice");
+    assert!(
+        said.text.contains("13 frequencies") && said.text.contains("ω1 = 1.2024"),
+        "{said}"
+    );
+    // The viewer's curve has every frequency.
+    let recording = Recording::read(&file);
+    assert!(recording.has("sweep/curve") && recording.has("sweep/labels"));
+}
