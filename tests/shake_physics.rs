@@ -12,6 +12,7 @@ use rope::model::bessel;
 use rope::model::support::{resonant_growth_per_period, steady_response};
 use rope::model::{Scene, ShakeStart};
 use rope::run::Frame;
+use rope::run::shake_figures::ShakeFigures;
 
 const SEGMENTS: usize = 100;
 const AMPLITUDE: f64 = 1e-3;
@@ -58,6 +59,17 @@ fn started_on_the_steady_state_off_resonance_the_free_end_swings_a_over_j0_for_t
             100.0 * off
         );
         assert!(off.abs() < 0.01, "Ω = {frequency}: off by {off:.3e}");
+        // The swing at Ω alone (the summary's lock-in reading) is the steady state's too.
+        let mut figures = None;
+        for f in &frames {
+            ShakeFigures::push(&mut figures, shake(frequency, ShakeStart::Steady), f);
+        }
+        let driven = figures.expect("a shake's figures").driven_amplitude;
+        eprintln!("shake Ω = {frequency}: at Ω alone {driven:.5e}");
+        assert!(
+            (driven / predicted - 1.0).abs() < 0.01,
+            "Ω = {frequency}: at Ω alone {driven:.5e} against {predicted:.5e}"
+        );
         // Periodic: the last period's amplitude is the first one's (no growing free mode).
         let per_period = frames.len() / periods as usize;
         let (first, last) = (

@@ -544,7 +544,7 @@ impl RopeLogger {
     pub fn log_sweep(
         &self,
         amplitude: f64,
-        points: &[(f64, f64)],
+        points: &[crate::run::shake_figures::SweepPoint],
     ) -> rerun::RecordingStreamResult<()> {
         super::sweep_view::log_sweep(&self.rec, amplitude, points)
     }

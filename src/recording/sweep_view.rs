@@ -1,37 +1,47 @@
 //! A sweep of the shaken support's frequency in the viewer: the free end's largest swing
-//! against Ω, drawn as a curve in a 2D view (Rerun's plots run along a timeline, and a sweep
+//! (red) and its swing at Ω alone (green) against Ω, drawn as curves in a 2D view (Rerun's plots run along a timeline, and a sweep
 //! runs along Ω), on a log scale of the support's amplitude, with the resonances of linear
 //! theory marked. Redrawn, static, as each run of the sweep ends.
 
 use super::entities::path;
 use crate::model::bessel;
+use crate::run::shake_figures::SweepPoint;
 use rerun::RecordingStream;
 
 /// How tall a decade of swing is drawn, in Ω's units.
 const DECADE: f32 = 0.8;
 
-/// The sweep's curve of `points` (Ω, largest |x_tip|) so far, for a support of `amplitude`,
-/// over its guides: a line at each decade of swing / A, and at each resonance ω_n within the
-/// frequencies swept.
+/// The sweep's curves of `points` so far, for a support of `amplitude`, over its guides: a
+/// line at each decade of swing / A, and at each resonance ω_n within the frequencies swept.
 pub(super) fn log_sweep(
     rec: &RecordingStream,
     amplitude: f64,
-    points: &[(f64, f64)],
+    points: &[SweepPoint],
 ) -> rerun::RecordingStreamResult<()> {
     let height = |swing: f64| -DECADE * (swing / amplitude).max(1e-3).log10() as f32;
-    let curve: Vec<[f32; 2]> = points
+    let curve = |swing: fn(&SweepPoint) -> f64| -> Vec<[f32; 2]> {
+        points
+            .iter()
+            .map(|p| [p.frequency as f32, height(swing(p))])
+            .collect()
+    };
+    let (largest, driven) = (curve(|p| p.largest), curve(|p| p.driven));
+    let lo = points
         .iter()
-        .map(|&(omega, swing)| [omega as f32, height(swing)])
-        .collect();
-    let lo = points.iter().map(|p| p.0).fold(f64::INFINITY, f64::min) as f32;
-    let hi = points.iter().map(|p| p.0).fold(0.0, f64::max) as f32;
-    let top = curve.iter().map(|p| p[1]).fold(-2.0 * DECADE, f32::min);
+        .map(|p| p.frequency)
+        .fold(f64::INFINITY, f64::min) as f32;
+    let hi = points.iter().map(|p| p.frequency).fold(0.0, f64::max) as f32;
+    let top = largest.iter().map(|p| p[1]).fold(-2.0 * DECADE, f32::min);
     let grey = rerun::Color::from_unmultiplied_rgba(160, 160, 160, 140);
     rec.log_static(
         path::SWEEP_CURVE,
-        &rerun::LineStrips2D::new([curve.clone()])
+        &rerun::LineStrips2D::new([largest, driven])
             .with_radii([0.01])
-            .with_colors([rerun::Color::from_rgb(200, 40, 40)]),
+            .with_colors([
+                rerun::Color::from_rgb(200, 40, 40),
+                rerun::Color::from_rgb(40, 150, 80),
+            ])
+            .with_labels(["largest swing", "swing at Ω alone"]),
     )?;
     // Decades of swing / A, labelled at the left; the resonances, labelled at the top. The
     // labels are points of their own, where they do not cover the curve.

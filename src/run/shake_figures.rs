@@ -1,5 +1,6 @@
 //! What the summary says of a shaken support: the free end's largest sideways swing against
-//! linear theory's, at the same frames, and how well the energy balance E − E₀ − W closed.
+//! linear theory's, at the same frames, its swing at the shaking frequency alone, and how well
+//! the energy balance E − E₀ − W closed.
 
 use super::simulate::Frame;
 use crate::model::theory::Comparison;
@@ -22,13 +23,33 @@ pub struct ShakeFigures {
     pub max_abs_balance: f64,
     /// The support's work W at the last frame.
     pub work: f64,
+    /// The free end's swing at the shaking frequency Ω alone: twice the magnitude of the mean
+    /// of x_tip e^{−iΩt} over the frames (a lock-in amplifier's reading). The free modes a
+    /// start from rest excites, at their own frequencies, mostly average out of it.
+    pub driven_amplitude: f64,
+    /// Σ x_tip cos Ωt, Σ x_tip sin Ωt and the frames summed, for `driven_amplitude`.
+    #[serde(skip)]
+    lock_in: (f64, f64, u64),
+}
+
+/// One frequency of a sweep: what its run measured of the free end.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SweepPoint {
+    /// Ω.
+    pub frequency: f64,
+    /// The largest sideways swing over the run's frames.
+    pub largest: f64,
+    /// The swing at Ω alone, its Fourier component over the run.
+    pub driven: f64,
 }
 
 impl ShakeFigures {
     /// Takes a frame into `figures`: the free end's sideways excursion in the room, the
     /// balance and the support's work (nothing for a frame under a fixed support).
-    pub fn push(figures: &mut Option<Self>, frame: &Frame) {
-        let (Some(balance), Some(support)) = (frame.balance, frame.support) else {
+    pub fn push(figures: &mut Option<Self>, scene: Scene, frame: &Frame) {
+        let (Some(balance), Some(support), Scene::Shake { frequency, .. }) =
+            (frame.balance, frame.support, scene)
+        else {
             return;
         };
         let sideways = frame
@@ -44,6 +65,8 @@ impl ShakeFigures {
             relative_error: 0.0,
             max_abs_balance: 0.0,
             work: 0.0,
+            driven_amplitude: 0.0,
+            lock_in: (0.0, 0.0, 0),
         });
         figures.tip_amplitude = figures.tip_amplitude.max(frame.tip().x.abs());
         if let Some(p) = sideways.and_then(Comparison::first_prediction) {
@@ -52,6 +75,12 @@ impl ShakeFigures {
         figures.relative_error = figures.tip_amplitude / figures.predicted_amplitude - 1.0;
         figures.max_abs_balance = figures.max_abs_balance.max(balance.abs());
         figures.work = support.work;
+        let (sin, cos) = (frequency * frame.time).sin_cos();
+        let x = frame.tip().x;
+        let (c, s, n) = figures.lock_in;
+        figures.lock_in = (c + x * cos, s + x * sin, n + 1);
+        let (c, s, n) = figures.lock_in;
+        figures.driven_amplitude = 2.0 * c.hypot(s) / n as f64;
     }
 
     /// The summary's lines for a run from `scene`.
@@ -66,11 +95,12 @@ impl ShakeFigures {
             _ => "",
         };
         format!(
-            "  free end's sideways swing: at most {:.4e}; linear theory ({}) {:.4e} ({:+.2} %{from})\n  energy balance: |E − E₀ − W| ≤ {:.1e} at every frame; the support's work W = {:.4e} at the end\n",
+            "  free end's sideways swing: at most {:.4e}; linear theory ({}) {:.4e} ({:+.2} %{from}); at Ω alone (its Fourier component over the run) {:.4e}\n  energy balance: |E − E₀ − W| ≤ {:.1e} at every frame; the support's work W = {:.4e} at the end\n",
             self.tip_amplitude,
             self.prediction,
             self.predicted_amplitude,
             100.0 * self.relative_error,
+            self.driven_amplitude,
             self.max_abs_balance,
             self.work
         )

@@ -49,7 +49,7 @@ impl TipSamples {
 
     /// Takes a frame of a run whose support moves (nothing under a fixed support).
     pub fn push_support(&mut self, frame: &Frame) {
-        ShakeFigures::push(&mut self.shake, frame);
+        ShakeFigures::push(&mut self.shake, self.scene, frame);
     }
 
     /// Adds the tip at `time`, forgetting the oldest sample when full.

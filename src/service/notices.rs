@@ -510,12 +510,31 @@ pub fn live_dropped(dropped: u64) -> Notice {
 /// (`chart`), or how to keep one.
 pub fn sweep(
     frequencies: usize,
-    peaks: &[(f64, f64)],
+    largest: &[(f64, f64)],
+    driven: &[(f64, f64)],
     cpu_seconds: f64,
     chart: Option<&std::path::Path>,
 ) -> Notice {
-    // The tallest peak nearer each resonance than any other (the start from rest adds
-    // smaller peaks of its free modes between them).
+    let found = format!(
+        "the tallest peak nearest each resonance of the free end's largest swing at {}; of its swing at Ω alone at {}",
+        tallest_peaks(largest),
+        tallest_peaks(driven)
+    );
+    let kept = match chart {
+        Some(path) => format!("its chart and CSV: {}.png, .svg, .csv", path.display()),
+        None => "give --save FILE.rrd to keep its chart and CSV beside the recording".to_owned(),
+    };
+    Notice::new(
+        Topic::Sweep,
+        format!(
+            "rope: sweep of {frequencies} frequencies in {cpu_seconds:.1} s of CPU simulating: {found}; {kept}"
+        ),
+    )
+}
+
+/// The tallest of `peaks` nearer each resonance than any other (a start from rest adds
+/// smaller peaks of its free modes between them), each against its ω_n, in words.
+fn tallest_peaks(peaks: &[(f64, f64)]) -> String {
     let mut tallest: Vec<(u32, f64, f64)> = Vec::new();
     for &(omega, swing) in peaks {
         let n = crate::model::scene::resonance_number(omega);
@@ -524,6 +543,9 @@ pub fn sweep(
             Some(_) => {}
             None => tallest.push((n, omega, swing)),
         }
+    }
+    if tallest.is_empty() {
+        return "none within the sweep".to_owned();
     }
     let named: Vec<String> = tallest
         .iter()
@@ -535,24 +557,7 @@ pub fn sweep(
             )
         })
         .collect();
-    let found = if named.is_empty() {
-        "no peak within the sweep".to_owned()
-    } else {
-        format!(
-            "the tallest peak of the free end's largest swing nearest each resonance at {}",
-            named.join(", ")
-        )
-    };
-    let kept = match chart {
-        Some(path) => format!("its chart and CSV: {}.png, .svg, .csv", path.display()),
-        None => "give --save FILE.rrd to keep its chart and CSV beside the recording".to_owned(),
-    };
-    Notice::new(
-        Topic::Sweep,
-        format!(
-            "rope: sweep of {frequencies} frequencies in {cpu_seconds:.1} s of CPU simulating: {found}; {kept}"
-        ),
-    )
+    named.join(", ")
 }
 
 /// A viewer is gone, and a file or a served endpoint keeps the recording.

@@ -17,6 +17,7 @@ use crate::recording::error::OutputError;
 use crate::recording::logger::RopeLogger;
 use crate::recording::viewer_sinks::ViewerLink;
 use crate::run::progress::Progress;
+use crate::run::shake_figures::SweepPoint;
 use crate::run::{Status, Summary};
 use crate::study::sweep_chart;
 use anyhow::Context as _;
@@ -118,9 +119,18 @@ pub fn run(args: &RunArgs, session: &Session) -> Result<Outcome, ServiceError> {
             sweep_chart::write(dir, &name, swept.amplitude, &swept.points)
                 .context("writing the sweep's chart")?;
         }
+        let peaks = |swing: fn(&SweepPoint) -> f64| {
+            let curve: Vec<(f64, f64)> = swept
+                .points
+                .iter()
+                .map(|p| (p.frequency, swing(p)))
+                .collect();
+            analysis::peaks(&curve)
+        };
         tell(notices::sweep(
             swept.points.len(),
-            &analysis::peaks(&swept.points),
+            &peaks(|p| p.largest),
+            &peaks(|p| p.driven),
             swept.cpu_seconds,
             chart.as_deref(),
         ));
@@ -200,7 +210,7 @@ fn is_sweep(plans: &[Planned]) -> bool {
 #[derive(Debug, Default)]
 struct Swept {
     amplitude: f64,
-    points: Vec<(f64, f64)>,
+    points: Vec<SweepPoint>,
     cpu_seconds: f64,
 }
 
@@ -271,7 +281,11 @@ fn run_passes(
             ) = (sweep, pass, plan.scene, summary.shake)
             {
                 swept.amplitude = amplitude;
-                swept.points.push((frequency, f.tip_amplitude));
+                swept.points.push(SweepPoint {
+                    frequency,
+                    largest: f.tip_amplitude,
+                    driven: f.driven_amplitude,
+                });
                 swept.cpu_seconds += summary.cpu_seconds;
                 for logger in logger.iter() {
                     logger

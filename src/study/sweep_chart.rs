@@ -1,26 +1,24 @@
 //! The chart of a sweep of the shaken support's frequency: the free end's largest sideways
-//! swing against Ω, over the support's amplitude, on a log axis, with the resonances ω_n of
-//! linear theory marked and its steady state A/|J₀(2Ω)| drawn beside: where the modes appear
-//! one after another. Also the sweep as CSV.
+//! swing against Ω, and its swing at Ω alone, over the support's amplitude, on a log axis,
+//! with the resonances ω_n of linear theory marked and its steady state A/|J₀(2Ω)| drawn
+//! beside: where the modes appear one after another. Also the sweep as CSV.
 
 use super::charts::{Drawn, SANS, legend, register_font, render_chart};
 use crate::model::bessel;
 use crate::model::support::steady_response;
+use crate::run::shake_figures::SweepPoint;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
-
-/// One frequency of a sweep: Ω, and the free end's largest sideways swing over the run.
-pub type SweepPoint = (f64, f64);
 
 /// `<name>.svg`, `<name>.png` and `<name>.csv` into `dir`, for a sweep of support amplitude
 /// `amplitude`.
 pub fn write(dir: &Path, name: &str, amplitude: f64, points: &[SweepPoint]) -> anyhow::Result<()> {
     register_font()?;
-    let mut csv = String::from("frequency,tip_amplitude,steady_state_amplitude\n");
-    for &(omega, swing) in points {
-        let steady = amplitude * steady_response(omega, 0.0).abs();
-        csv += &format!("{omega},{swing},{steady}\n");
+    let mut csv = String::from("frequency,tip_amplitude,driven_amplitude,steady_state_amplitude\n");
+    for p in points {
+        let steady = amplitude * steady_response(p.frequency, 0.0).abs();
+        csv += &format!("{},{},{},{steady}\n", p.frequency, p.largest, p.driven);
     }
     let path = dir.join(format!("{name}.csv"));
     std::fs::write(&path, csv).map_err(|e| anyhow::anyhow!("writing {}: {e}", path.display()))?;
@@ -33,20 +31,32 @@ fn draw<DB: DrawingBackend>(
     points: &[SweepPoint],
 ) -> Drawn<DB> {
     root.fill(&WHITE)?;
-    let lo = points.iter().map(|p| p.0).fold(f64::INFINITY, f64::min);
-    let hi = points.iter().map(|p| p.0).fold(0.0, f64::max);
-    let (lo, hi) = if lo < hi { (lo, hi) } else { (0.0, 5.0) };
-    let ratios: Vec<(f64, f64)> = points
+    let lo = points
         .iter()
-        .map(|&(omega, swing)| (omega, swing / amplitude))
-        .filter(|p| p.1 > 0.0)
-        .collect();
+        .map(|p| p.frequency)
+        .fold(f64::INFINITY, f64::min);
+    let hi = points.iter().map(|p| p.frequency).fold(0.0, f64::max);
+    let (lo, hi) = if lo < hi { (lo, hi) } else { (0.0, 5.0) };
+    let over_a = |swing: fn(&SweepPoint) -> f64| -> Vec<(f64, f64)> {
+        points
+            .iter()
+            .map(|p| (p.frequency, swing(p) / amplitude))
+            .filter(|p| p.1 > 0.0)
+            .collect()
+    };
+    let (ratios, driven) = (over_a(|p| p.largest), over_a(|p| p.driven));
     let top = ratios.iter().map(|p| p.1).fold(10.0, f64::max) * 2.0;
-    let bottom = ratios.iter().map(|p| p.1).fold(top, f64::min).min(1.0) / 2.0;
+    let bottom = ratios
+        .iter()
+        .chain(&driven)
+        .map(|p| p.1)
+        .fold(top, f64::min)
+        .min(1.0)
+        / 2.0;
     let mut chart = ChartBuilder::on(root)
         .caption(
             format!(
-                "Shaken support, A = {amplitude}: the free end's largest swing against the shaking frequency"
+                "Shaken support, A = {amplitude}: the free end's swing against the shaking frequency"
             ),
             (SANS, 20),
         )
@@ -57,7 +67,7 @@ fn draw<DB: DrawingBackend>(
     chart
         .configure_mesh()
         .x_desc("Ω (radians per time unit, g = L = 1)")
-        .y_desc("largest |x_tip| / A")
+        .y_desc("swing of the free end / A")
         .y_label_formatter(&|v| format!("{v:.0e}"))
         .label_style((SANS, 13))
         .draw()?;
@@ -108,6 +118,11 @@ fn draw<DB: DrawingBackend>(
         .label("measured: the largest swing over each run")
         .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], red.stroke_width(2)));
     chart.draw_series(ratios.into_iter().map(|p| Circle::new(p, 2, red.filled())))?;
+    let green = RGBColor(40, 150, 80);
+    chart
+        .draw_series(LineSeries::new(driven, green.stroke_width(2)))?
+        .label("measured: the swing at Ω alone (its Fourier component over the run)")
+        .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], green.stroke_width(2)));
     legend(
         chart.configure_series_labels(),
         SeriesLabelPosition::LowerRight,
