@@ -36,7 +36,7 @@ Examples:
       method, N and step chosen for a tip error of at most 1e-3
   rope run --scene fold --gap 0.02 --segments 200 --save fold.rrd
       a folded chain let go at one end: faster than gravity, against theory
-  rope run --scene shake --from rest --amplitude 1e-3 --sweep 0.2..5:120 --duration 40 --segments 50 --save sweep.rrd
+  rope run --scene shake --from rest --amplitude 1e-4 --sweep 0.2..5:120 --duration 40 --segments 50 --save sweep.rrd
       a support shaken at 120 frequencies: the resonances one after another (sweep-sweep.png)
 
 Exit status:
