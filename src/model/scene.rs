@@ -244,22 +244,21 @@ impl Scene {
                 // grows instead: its envelope is linear theory's.
                 let response = support::steady_response(frequency, 0.0);
                 let measured = Comparison::new(Comparison::TIP_SIDEWAYS, reading.tip.x);
-                let compared = if start == ShakeStart::Rest
-                    && amplitude * response.abs() > STEADY_TIP_MAX
-                {
-                    let resonance = nearest_resonance(frequency);
-                    let growth =
-                        support::resonant_growth_per_period(resonance_number(resonance), amplitude);
-                    measured.predicted(
-                        "resonance's envelope, growing c_n π A a period",
-                        Some(growth * reading.time * resonance / std::f64::consts::TAU),
-                    )
-                } else {
-                    measured.predicted(
-                        "steady state A sin Ωt / J₀(2Ω)",
-                        Some(amplitude * response * (frequency * reading.time).sin()),
-                    )
-                };
+                let compared =
+                    if start == ShakeStart::Rest && amplitude * response.abs() > STEADY_TIP_MAX {
+                        let n = resonance_number(frequency);
+                        let resonance = bessel::mode_frequency(n);
+                        let growth = support::resonant_growth_per_period(n, amplitude);
+                        measured.predicted(
+                            "resonance's envelope, growing c_n π A a period",
+                            Some(growth * reading.time * resonance / std::f64::consts::TAU),
+                        )
+                    } else {
+                        measured.predicted(
+                            "steady state A sin Ωt / J₀(2Ω)",
+                            Some(amplitude * response * (frequency * reading.time).sin()),
+                        )
+                    };
                 vec![compared]
             }
             Self::Release { .. } | Self::Mode { .. } => Vec::new(),
@@ -286,7 +285,13 @@ impl Scene {
                     })
                     .collect()
             }
-            _ => vec![0.0; segments],
+            Self::Shake {
+                start: ShakeStart::Rest,
+                ..
+            }
+            | Self::Release { .. }
+            | Self::Mode { .. }
+            | Self::Fold { .. } => vec![0.0; segments],
         }
     }
 
@@ -314,19 +319,19 @@ impl Scene {
     }
 }
 
-/// The resonance ω_n nearest `frequency` (of the first 40).
+/// The resonance ω_n nearest `frequency`.
 pub fn nearest_resonance(frequency: f64) -> f64 {
     bessel::mode_frequency(resonance_number(frequency))
 }
 
-/// n of the resonance ω_n nearest `frequency` (of the first 40).
+/// n of the resonance ω_n nearest `frequency`: McMahon's ω_n ≈ (n − ¼)π/2 names the
+/// candidate, and its neighbours settle it (the estimate is within a hundredth of ω_n).
 pub fn resonance_number(frequency: f64) -> u32 {
-    (1..=40)
-        .min_by(|&a, &b| {
-            let off = |n| (bessel::mode_frequency(n) - frequency).abs();
-            off(a).total_cmp(&off(b))
-        })
-        .unwrap_or(1)
+    let guess = (2.0 * frequency / PI + 0.25).round().max(1.0) as u32;
+    (guess.saturating_sub(1).max(1)..=guess + 1)
+        .map(|n| (n, (bessel::mode_frequency(n) - frequency).abs()))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map_or(1, |(n, _)| n)
 }
 
 /// The U of a fold cut into `segments` equal rods: rod i points along the chord of the U's
@@ -403,6 +408,20 @@ mod tests {
         // Straight down, round the bend, straight up.
         assert_eq!(angles[0], FRAC_PI_2);
         assert_eq!(angles[n - 1], -FRAC_PI_2);
+    }
+
+    #[test]
+    fn the_nearest_resonance_is_the_nearest_of_all_the_zeros() {
+        for i in 0..2000 {
+            let frequency = 0.01 + 0.01 * f64::from(i);
+            let brute = (1..=60)
+                .min_by(|&a: &u32, &b: &u32| {
+                    let off = |n| (bessel::mode_frequency(n) - frequency).abs();
+                    off(a).total_cmp(&off(b))
+                })
+                .unwrap();
+            assert_eq!(resonance_number(frequency), brute, "Ω = {frequency}");
+        }
     }
 
     #[test]

@@ -506,14 +506,15 @@ pub fn live_dropped(dropped: u64) -> Notice {
 }
 
 /// What a sweep of the shaken support's frequency found: the peaks of the free end's largest
-/// swing against the resonances ω_n of linear theory, its CPU time, and where its chart went
-/// (`chart`), or how to keep one.
+/// swing and of its swing at Ω alone against the resonances ω_n of linear theory, its CPU
+/// time, and where its chart went (`chart`: written there, or not asked for, or why it could
+/// not be written).
 pub fn sweep(
     frequencies: usize,
     largest: &[(f64, f64)],
     driven: &[(f64, f64)],
     cpu_seconds: f64,
-    chart: Option<&std::path::Path>,
+    chart: Result<Option<&std::path::Path>, String>,
 ) -> Notice {
     let found = format!(
         "the tallest peak nearest each resonance of the free end's largest swing at {}; of its swing at Ω alone at {}",
@@ -521,8 +522,11 @@ pub fn sweep(
         tallest_peaks(driven)
     );
     let kept = match chart {
-        Some(path) => format!("its chart and CSV: {}.png, .svg, .csv", path.display()),
-        None => "give --save FILE.rrd to keep its chart and CSV beside the recording".to_owned(),
+        Ok(Some(path)) => format!("its chart and CSV: {}.png, .svg, .csv", path.display()),
+        Ok(None) => {
+            "give --save FILE.rrd to keep its chart and CSV beside the recording".to_owned()
+        }
+        Err(why) => format!("its chart could not be written ({why}); the recording is whole"),
     };
     Notice::new(
         Topic::Sweep,

@@ -109,31 +109,7 @@ pub fn run(args: &RunArgs, session: &Session) -> Result<Outcome, ServiceError> {
     }
     let (mut summary, strayed, swept) = run_passes(args, &plans, &mut loggers, session)?;
     if swept.points.len() >= 2 {
-        let chart = args.output.save.as_deref().map(|save| {
-            let stem = save.file_stem().unwrap_or_default().to_string_lossy();
-            save.with_file_name(format!("{stem}-sweep"))
-        });
-        if let Some(chart) = &chart {
-            let dir = chart.parent().unwrap_or(std::path::Path::new("."));
-            let name = chart.file_name().unwrap_or_default().to_string_lossy();
-            sweep_chart::write(dir, &name, swept.amplitude, &swept.points)
-                .context("writing the sweep's chart")?;
-        }
-        let peaks = |swing: fn(&SweepPoint) -> f64| {
-            let curve: Vec<(f64, f64)> = swept
-                .points
-                .iter()
-                .map(|p| (p.frequency, swing(p)))
-                .collect();
-            analysis::peaks(&curve)
-        };
-        tell(notices::sweep(
-            swept.points.len(),
-            &peaks(|p| p.largest),
-            &peaks(|p| p.driven),
-            swept.cpu_seconds,
-            chart.as_deref(),
-        ));
+        tell(finish_sweep(args, &swept));
     }
     if let Some(reason) = lost_viewer(&output) {
         summary.recording_error = Some(format!(
@@ -205,13 +181,47 @@ fn is_sweep(plans: &[Planned]) -> bool {
             .all(|p| p.others.is_empty() && matches!(p.plan.scene, Scene::Shake { .. }))
 }
 
-/// A sweep of the shaking frequency as it goes: each run's Ω and the free end's largest
-/// swing, for a support of `amplitude`, and the CPU time of its runs.
+/// A sweep of the shaking frequency as it goes: what each run measured of the free end, for
+/// a support of `amplitude`, and the CPU time of its runs.
 #[derive(Debug, Default)]
 struct Swept {
     amplitude: f64,
     points: Vec<SweepPoint>,
     cpu_seconds: f64,
+}
+
+/// What a sweep found, and its chart and CSV beside the `--save` file, if there is one. A
+/// chart that cannot be written is said, not an error: the recording and the summary stand.
+fn finish_sweep(args: &RunArgs, swept: &Swept) -> notices::Notice {
+    let chart = args.output.save.as_deref().map(|save| {
+        let stem = save.file_stem().unwrap_or_default().to_string_lossy();
+        save.with_file_name(format!("{stem}-sweep"))
+    });
+    let written = match &chart {
+        Some(chart) => {
+            let dir = chart.parent().unwrap_or(std::path::Path::new("."));
+            let name = chart.file_name().unwrap_or_default().to_string_lossy();
+            sweep_chart::write(dir, &name, swept.amplitude, &swept.points)
+                .map(|()| Some(chart.as_path()))
+                .map_err(|err| format!("{err:#}"))
+        }
+        None => Ok(None),
+    };
+    let peaks = |swing: fn(&SweepPoint) -> f64| {
+        let curve: Vec<(f64, f64)> = swept
+            .points
+            .iter()
+            .map(|p| (p.frequency, swing(p)))
+            .collect();
+        analysis::peaks(&curve)
+    };
+    notices::sweep(
+        swept.points.len(),
+        &peaks(|p| p.largest),
+        &peaks(|p| p.driven),
+        swept.cpu_seconds,
+        written,
+    )
 }
 
 /// Runs the plans in turn, `--loop` times over, until one does not end well or the session
