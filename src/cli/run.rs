@@ -1,7 +1,7 @@
 //! `rope run`'s flags, and the request for each scene they become.
 
 use super::limits::LimitArgs;
-use super::scene::{SceneArgs, SceneKind};
+use super::scene::SceneArgs;
 use crate::error::ConfigError;
 use crate::methods::MethodKind;
 use crate::plan::runs::{Planned, RunRequest, plan_scene};
@@ -121,10 +121,12 @@ fn parse_passes(text: &str) -> Result<Passes, String> {
 pub enum DefaultMethod {
     /// A run left running (endless, looping or served): [`MethodKind::DEFAULT_LASTING`].
     Lasting,
-    /// A fold: [`MethodKind::FOLD_DEFAULT`].
-    Fold,
-    /// A shake: [`MethodKind::SHAKE_DEFAULT`].
-    Shake,
+    /// A scene with a method of its own ([`MethodKind::scene_default`]): the fold, the shake.
+    Scene {
+        scene: &'static str,
+        method: MethodKind,
+        because: &'static str,
+    },
 }
 
 impl RunArgs {
@@ -156,22 +158,25 @@ impl RunArgs {
             .first()
             .copied()
             .unwrap_or_else(|| match self.default_method() {
-                Some(DefaultMethod::Fold) => MethodKind::FOLD_DEFAULT,
-                Some(DefaultMethod::Shake) => MethodKind::SHAKE_DEFAULT,
+                Some(DefaultMethod::Scene { method, .. }) => method,
                 _ => MethodKind::default_for(self.lasts()),
             })
     }
 
-    /// Why the method is a default the run announces, if it is: none named, and a fold, or
-    /// none chosen by `--tolerance` for a run that [`lasts`](Self::lasts).
+    /// Why the method is a default the run announces, if it is: none named, and a scene with
+    /// a method of its own (a fold, a shake), or none chosen by `--tolerance` for a run that
+    /// [`lasts`](Self::lasts).
     pub fn default_method(&self) -> Option<DefaultMethod> {
         if !self.method.is_empty() {
             return None;
         }
-        match self.scene.scene {
-            SceneKind::Fold => return Some(DefaultMethod::Fold),
-            SceneKind::Shake => return Some(DefaultMethod::Shake),
-            SceneKind::Release | SceneKind::Mode => {}
+        let scene = self.scene.scene.name();
+        if let Some((method, because)) = MethodKind::scene_default(scene) {
+            return Some(DefaultMethod::Scene {
+                scene,
+                method,
+                because,
+            });
         }
         (self.tolerance.is_none() && self.lasts()).then_some(DefaultMethod::Lasting)
     }

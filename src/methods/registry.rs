@@ -50,19 +50,32 @@ impl MethodKind {
     /// summary say it.
     pub const DEFAULT_LASTING_BECAUSE: &str = "it keeps the energy at every frame, at about three quarters of the chain's cost per time unit";
 
-    /// The method of a fold when none is named: the fold ends in a snap, the free end
-    /// whipping the last rods round at thousands of radians a time unit, and `midpoint`
-    /// keeps the energy through it to round-off (`tests/fold_physics.rs`).
-    pub const FOLD_DEFAULT: MethodKind = MethodKind::Midpoint;
+    /// The scenes with a method of their own when none is named: the scene's name, the
+    /// method, and why, as the run and its summary say it. The fold ends in a snap, the free
+    /// end whipping the last rods round at thousands of radians a time unit, and `midpoint`
+    /// keeps the energy through it to round-off (`tests/fold_physics.rs`); under a shaken
+    /// support it keeps the energy balance (`tests/shake_physics.rs`).
+    pub const SCENE_DEFAULTS: [(&str, MethodKind, &str); 2] = [
+        (
+            "fold",
+            MethodKind::Midpoint,
+            "it keeps the energy through the final snap to round-off, where the report's scheme diverges in the first second, rattle's energy jumps and the chain's drifts",
+        ),
+        (
+            "shake",
+            MethodKind::Midpoint,
+            "it keeps the balance E − E₀ − W of the string's energy and the support's work to round-off (the shaken frame's gravity taken at each step's middle), where the chain's and rattle's drift; the report's scheme cannot carry a moving support",
+        ),
+    ];
 
-    /// Why [`Self::FOLD_DEFAULT`] is the fold's default, as the run and its summary say it.
-    pub const FOLD_DEFAULT_BECAUSE: &str = "it keeps the energy through the final snap to round-off, where the report's scheme diverges in the first second, rattle's energy jumps and the chain's drifts";
-
-    /// The method a shake runs when none is named.
-    pub const SHAKE_DEFAULT: MethodKind = MethodKind::Midpoint;
-
-    /// Why [`Self::SHAKE_DEFAULT`] is the shake's default, as the run and its summary say it.
-    pub const SHAKE_DEFAULT_BECAUSE: &str = "it keeps the balance E − E₀ − W of the string's energy and the support's work to round-off (the shaken frame's gravity taken at each step's middle), where the chain's and rattle's drift; the report's scheme cannot carry a moving support";
+    /// The method of the scene named `scene` when none is named, and why, if it has one of
+    /// its own ([`Self::SCENE_DEFAULTS`]).
+    pub fn scene_default(scene: &str) -> Option<(MethodKind, &'static str)> {
+        Self::SCENE_DEFAULTS
+            .iter()
+            .find(|(name, ..)| *name == scene)
+            .map(|&(_, method, because)| (method, because))
+    }
 
     /// The method `rope study` computes its converged reference with: of a known, whole order
     /// in h (Richardson's extrapolation needs one) and with no stability limit to respect.

@@ -269,13 +269,8 @@ fn default_method(method: MethodKind, why: DefaultMethod) -> Notice {
             "rope: a run left running (endless, looping or served) uses the {method} method: {} (the report's scheme blows up after tens of time units, the chain's energy drifts down, rattle's jumps at violent snaps; --method to choose another)",
             MethodKind::DEFAULT_LASTING_BECAUSE
         ),
-        DefaultMethod::Fold => format!(
-            "rope: the fold uses the {method} method: {} (--method to choose another)",
-            MethodKind::FOLD_DEFAULT_BECAUSE
-        ),
-        DefaultMethod::Shake => format!(
-            "rope: the shake uses the {method} method: {} (--method to choose another)",
-            MethodKind::SHAKE_DEFAULT_BECAUSE
+        DefaultMethod::Scene { scene, because, .. } => format!(
+            "rope: the {scene} uses the {method} method: {because} (--method to choose another)"
         ),
     };
     Notice::new(Topic::LastingDefault, text)
@@ -288,14 +283,9 @@ pub fn default_method_because(method: MethodKind, why: DefaultMethod) -> String 
             "{method}, the default for a run left running (endless, looping or served): {}",
             MethodKind::DEFAULT_LASTING_BECAUSE
         ),
-        DefaultMethod::Fold => format!(
-            "{method}, the fold's default: {}",
-            MethodKind::FOLD_DEFAULT_BECAUSE
-        ),
-        DefaultMethod::Shake => format!(
-            "{method}, the shake's default: {}",
-            MethodKind::SHAKE_DEFAULT_BECAUSE
-        ),
+        DefaultMethod::Scene { scene, because, .. } => {
+            format!("{method}, the {scene}'s default: {because}")
+        }
     }
 }
 
