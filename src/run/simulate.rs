@@ -222,7 +222,8 @@ pub fn frame(method: &mut dyn Method, obs: &mut Observation, base: EnergyBase) -
     let moving = Vector2::new(support.map_or(0.0, |s| s.velocity), 0.0);
     let energy = method.energy();
     let first_at = method.descriptor().tension_first_at;
-    let kept = method.energy_less_work();
+    // E − W from the energy and the support already in hand ([`Method::energy_less_work`]).
+    let kept = energy.total() - support.map_or(0.0, |s| s.work);
     Frame {
         step: method.steps(),
         time: method.time(),
