@@ -22,6 +22,7 @@ use super::method::{self, Descriptor, Method, Observation};
 use crate::error::{ConfigError, Diverged};
 use crate::model::geometry::{self, Energy};
 use crate::model::{Scene, SupportLedger, SupportNow};
+use nalgebra::Vector2;
 
 /// Substep bounds: k_sub ≤ C_F h / sqrt(F_max) (measured stable up to C_F ≈ 0.6 at N = 100)
 /// and k_sub |φ̇|_max ≤ C_ω, at the default step and above; a finer step tightens both in
@@ -153,14 +154,17 @@ impl Chain {
             .unwrap_or_else(|| vec![1.0 / n as f64; n])
     }
 
-    /// The joint forces and angular accelerations at (φ, φ̇) = (`phi`, `omega`) into `alpha`.
+    /// The joint forces and angular accelerations at (φ, φ̇) = (`phi`, `omega`) under
+    /// `gravity` (the support's frame's, [`SupportLedger::gravity`]) into `alpha`.
     fn solve(
         solver: &mut ForceSolver,
         length: Option<&[f64]>,
+        gravity: Vector2<f64>,
         phi: &[f64],
         omega: &[f64],
         alpha: &mut [f64],
     ) -> (f64, f64) {
+        solver.gravity = gravity;
         match length {
             None => solver.accelerations(phi, omega, alpha),
             Some(length) => solver.accelerations_graded(phi, omega, length, alpha),
@@ -170,10 +174,11 @@ impl Chain {
     /// Accelerations and forces at the current state; returns the largest joint force and
     /// the largest |φ̇|.
     fn evaluate_now(&mut self) -> (f64, f64) {
-        self.solver.gravity = self.ledger.gravity(self.time());
+        let gravity = self.ledger.gravity(self.time());
         let extremes = Self::solve(
             &mut self.solver,
             self.length.as_deref(),
+            gravity,
             &self.phi,
             &self.omega,
             &mut self.alpha,
@@ -223,10 +228,10 @@ impl Chain {
         }
         // Each stage's time, then its weight and how far the next stage advances.
         for (at, weight, advance) in [(0.5, 2.0, 0.5 * dt), (0.5, 2.0, dt), (1.0, 1.0, 0.0)] {
-            self.solver.gravity = self.ledger.gravity(start + at * dt);
             Self::solve(
                 &mut self.solver,
                 self.length.as_deref(),
+                self.ledger.gravity(start + at * dt),
                 &self.stage_phi,
                 &self.stage_omega,
                 &mut self.alpha,
@@ -271,28 +276,31 @@ impl Method for Chain {
         let (force, rate) = self.evaluate_now();
         let substeps = self.substeps(force, rate);
         let dt = k / substeps as f64;
+        // The first moment's sideways part, for the support's work: only where it moves, and
+        // each substep's end is the next one's start.
         let moves = self.ledger.moves();
+        let mut moment = if moves {
+            geometry::first_moment(&self.phi).x
+        } else {
+            0.0
+        };
         for sub in 0..substeps {
             let start = self.time() + sub as f64 * dt;
             if sub > 0 {
-                self.solver.gravity = self.ledger.gravity(start);
                 Self::solve(
                     &mut self.solver,
                     self.length.as_deref(),
+                    self.ledger.gravity(start),
                     &self.phi,
                     &self.omega,
                     &mut self.alpha,
                 );
             }
-            let before = if moves {
-                geometry::first_moment(&self.phi).x
-            } else {
-                0.0
-            };
             self.rk4(start, dt);
             if moves {
-                let moved = geometry::first_moment(&self.phi).x - before;
-                self.ledger.step(start, dt, moved);
+                let after = geometry::first_moment(&self.phi).x;
+                self.ledger.step(start, dt, after - moment);
+                moment = after;
             }
         }
         let check: f64 = self.phi.iter().chain(&self.omega).sum();
