@@ -120,7 +120,7 @@ impl Chain {
     /// The chain of `segments` rods graded towards the free end, rod i spanning
     /// s_i = 1 − (1 − i/N)^`exponent` to s_{i+1} (the last rod about `exponent` N^−`exponent` long),
     /// at rest in `scene` (a release: every rod at its angle). A discretization for measuring
-    /// how the tip converges through the whip (`examples/graded_convergence.rs`); the run and
+    /// how the tip converges through the whip (`examples/reference_convergence.rs`); the run and
     /// the planning use equal rods.
     pub fn graded(
         scene: &Scene,

@@ -127,7 +127,7 @@ impl Scene {
                 if !(frequency > 0.0 && frequency <= SHAKE_FREQUENCY_MAX) {
                     return Err(ConfigError::ShakeFrequency(frequency));
                 }
-                let tip = amplitude * support::steady_response(frequency, 0.0).abs();
+                let tip = support::free_end_swing(amplitude, frequency);
                 if start == ShakeStart::Steady && tip > STEADY_TIP_MAX {
                     return Err(ConfigError::SteadyNearResonance {
                         frequency,
@@ -189,7 +189,7 @@ impl Scene {
                 ..
             } => Some(format!(
                 "**Theory** (linear, D. Bernoulli's hanging string): shaken as x_s = A sin Ωt, the string answers with u(z, t) = A J₀(2Ω√z)/J₀(2Ω) sin Ωt, z the height above the free end, so the free end swings {:.4} (A/|J₀(2Ω)|, A = {amplitude}, Ω = {frequency}){}. It resonates where J₀(2Ω) = 0: ω₁ = {:.4}, ω₂ = {:.4}, ω₃ = {:.4}. The energy panel shows the support's work W and the balance E − E₀ − W, which an exact method keeps at zero.",
-                amplitude * support::steady_response(frequency, 0.0).abs(),
+                support::free_end_swing(amplitude, frequency),
                 if support::steady_response(frequency, 0.0) < 0.0 {
                     ", against the support's motion"
                 } else {

@@ -75,6 +75,12 @@ pub fn steady_response(frequency: f64, z: f64) -> f64 {
     bessel::j0(2.0 * frequency * z.max(0.0).sqrt()) / bessel::j0(2.0 * frequency)
 }
 
+/// The free end's swing in the linear steady state of a support shaken with `amplitude` at
+/// `frequency`: A/|J₀(2Ω)|.
+pub fn free_end_swing(amplitude: f64, frequency: f64) -> f64 {
+    amplitude * steady_response(frequency, 0.0).abs()
+}
+
 /// How much the free end's amplitude grows each period when a string at rest is shaken at
 /// its `n`-th resonance ω_n with amplitude `amplitude`, by linear theory. The n-th mode's
 /// share of the frame's uniform inertial force is c_n = ∫J₀(2ω_n√z) dz / ∫J₀²(2ω_n√z) dz =
@@ -139,11 +145,6 @@ impl SupportLedger {
             inertial: 0.0,
             start: v * momentum_x + 0.5 * v * v,
         }
-    }
-
-    /// The support it keeps the books of.
-    pub fn support(&self) -> Support {
-        self.support
     }
 
     /// Whether the support moves at all.

@@ -5,7 +5,7 @@
 
 use super::charts::{Drawn, SANS, legend, register_font, render_chart};
 use crate::model::bessel;
-use crate::model::support::steady_response;
+use crate::model::support::{free_end_swing, steady_response};
 use crate::run::shake_figures::SweepPoint;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -17,7 +17,7 @@ pub fn write(dir: &Path, name: &str, amplitude: f64, points: &[SweepPoint]) -> a
     register_font()?;
     let mut csv = String::from("frequency,tip_amplitude,driven_amplitude,steady_state_amplitude\n");
     for p in points {
-        let steady = amplitude * steady_response(p.frequency, 0.0).abs();
+        let steady = free_end_swing(amplitude, p.frequency);
         csv += &format!("{},{},{},{steady}\n", p.frequency, p.largest, p.driven);
     }
     let path = dir.join(format!("{name}.csv"));
