@@ -107,9 +107,18 @@ FRAMES_IN_A_SECOND = """new Promise(done => {
 })"""
 
 
-def soak(page, rope_pid: int, seconds: float, every: float, csv: pathlib.Path) -> list:
+def simulated_time(said: list) -> str:
+    """The time rope last said it had simulated to (its progress line, "rope: t = 754.5 of
+    inf", every 30 s or so), or "" before the first."""
+    for line in reversed(said):
+        if line.startswith("rope: t = "):
+            return line.split()[3]
+    return ""
+
+
+def soak(page, rope_pid: int, said: list, seconds: float, every: float, csv: pathlib.Path) -> list:
     """Keeps the page open, sampling every `every` s; returns the failures seen."""
-    rows = ["seconds,page_alive,picture_changed,browser_mb,js_heap_mb,rope_mb,page_fps,wasm_mb,renderer_mb,gpu_mb"]
+    rows = ["seconds,page_alive,picture_changed,browser_mb,js_heap_mb,rope_mb,page_fps,wasm_mb,renderer_mb,gpu_mb,rope_t"]
     failures = []
     started = time.time()
     last_picture = None
@@ -141,7 +150,8 @@ def soak(page, rope_pid: int, seconds: float, every: float, csv: pathlib.Path) -
             failures.append(f"the page stopped answering after {time.time() - started:.0f} s: {err}")
         rows.append(f"{time.time() - started:.0f},{int(alive)},{changed},"
                     f"{resident_mb(browser_pids()):.1f},{heap / 1e6:.1f},{resident_mb([rope_pid]):.1f},{fps},{wasm / 1e6:.1f},"
-                    f"{resident_mb(browser_pids('renderer')):.1f},{resident_mb(browser_pids('gpu-process')):.1f}")
+                    f"{resident_mb(browser_pids('renderer')):.1f},{resident_mb(browser_pids('gpu-process')):.1f},"
+                    f"{simulated_time(said)}")
         print(f"web-check: soak {rows[-1]}", flush=True)
         csv.parent.mkdir(parents=True, exist_ok=True)
         csv.write_text("\n".join(rows) + "\n")  # kept as it goes: a crash leaves the samples
@@ -358,7 +368,7 @@ def main() -> int:
         if args.stall > 0:
             failures += stall(page, run.pid, args.stall, args.sample_every, pathlib.Path(args.soak_csv))
         if args.soak > 0:
-            failures += soak(page, run.pid, args.soak, args.sample_every, pathlib.Path(args.soak_csv))
+            failures += soak(page, run.pid, said, args.soak, args.sample_every, pathlib.Path(args.soak_csv))
         if args.shot_at is not None:
             words = args.run_args.split()
             duration = float(words[words.index("--duration") + 1]) if "--duration" in words else 3.0
