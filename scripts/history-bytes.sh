@@ -20,7 +20,7 @@ out=$(mktemp -d)
 rope=
 trap 'kill $rope 2> /dev/null || true; rm -rf "$out"' EXIT
 
-# The data bytes of the history of a run of $1 time units.
+# The data bytes of the history of a run of $1 time units, on standard output.
 history_bytes() {
     target/release/rope run --serve-grpc "127.0.0.1:$port" --duration "$1" --realtime 1000 "${@:2}" \
         2> "$out/rope.txt" &
@@ -43,8 +43,11 @@ history_bytes() {
                  print $3 * scale; exit }'
 }
 
-short=$(history_bytes "$units" "$@")
-long=$(history_bytes "$((2 * units))" "$@")
+# Not in $(…): a subshell's rope would be out of the trap's reach.
+history_bytes "$units" "$@" > "$out/short"
+history_bytes "$((2 * units))" "$@" > "$out/long"
+short=$(cat "$out/short")
+long=$(cat "$out/long")
 awk -v s="$short" -v l="$long" -v u="$units" 'BEGIN {
     printf "history data: %.0f bytes over %d time units, %.0f over %d: %.2f kB a time unit\n",
         s, u, l, 2 * u, (l - s) / u / 1000 }'
