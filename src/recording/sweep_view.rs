@@ -26,11 +26,8 @@ pub(super) fn log_sweep(
             .collect()
     };
     let (largest, driven) = (curve(|p| p.largest), curve(|p| p.driven));
-    let lo = points
-        .iter()
-        .map(|p| p.frequency)
-        .fold(f64::INFINITY, f64::min) as f32;
-    let hi = points.iter().map(|p| p.frequency).fold(0.0, f64::max) as f32;
+    let (lo, hi) = SweepPoint::span(points);
+    let (lo, hi) = (lo as f32, hi as f32);
     let top = largest.iter().map(|p| p[1]).fold(-2.0 * DECADE, f32::min);
     let grey = rerun::Color::from_unmultiplied_rgba(160, 160, 160, 140);
     rec.log_static(

@@ -43,6 +43,15 @@ pub struct SweepPoint {
     pub driven: f64,
 }
 
+impl SweepPoint {
+    /// The lowest and the highest frequency of `points` (∞ and 0 for none).
+    pub fn span(points: &[Self]) -> (f64, f64) {
+        points.iter().fold((f64::INFINITY, 0.0), |(lo, hi), p| {
+            (lo.min(p.frequency), hi.max(p.frequency))
+        })
+    }
+}
+
 impl ShakeFigures {
     /// Takes a frame into `figures`: the free end's sideways excursion in the room, the
     /// balance and the support's work (nothing for a frame under a fixed support).
@@ -77,10 +86,9 @@ impl ShakeFigures {
         figures.work = support.work;
         let (sin, cos) = (frequency * frame.time).sin_cos();
         let x = frame.tip().x;
-        let (c, s, n) = figures.lock_in;
-        figures.lock_in = (c + x * cos, s + x * sin, n + 1);
-        let (c, s, n) = figures.lock_in;
-        figures.driven_amplitude = 2.0 * c.hypot(s) / n as f64;
+        let (c, s, n) = &mut figures.lock_in;
+        (*c, *s, *n) = (*c + x * cos, *s + x * sin, *n + 1);
+        figures.driven_amplitude = 2.0 * c.hypot(*s) / *n as f64;
     }
 
     /// The summary's lines for a run from `scene`.

@@ -31,11 +31,7 @@ fn draw<DB: DrawingBackend>(
     points: &[SweepPoint],
 ) -> Drawn<DB> {
     root.fill(&WHITE)?;
-    let lo = points
-        .iter()
-        .map(|p| p.frequency)
-        .fold(f64::INFINITY, f64::min);
-    let hi = points.iter().map(|p| p.frequency).fold(0.0, f64::max);
+    let (lo, hi) = SweepPoint::span(points);
     let (lo, hi) = if lo < hi { (lo, hi) } else { (0.0, 5.0) };
     let over_a = |swing: fn(&SweepPoint) -> f64| -> Vec<(f64, f64)> {
         points
