@@ -10,7 +10,7 @@ mod scene;
 mod study;
 
 pub use limits::{LimitArgs, MemorySize};
-pub use paths::{check_writable_file, writable_dir};
+pub use paths::{check_writable_file, writable_dir, write_whole};
 pub use run::{DefaultMethod, Passes, RunArgs};
 pub use scene::{SceneArgs, SceneKind};
 pub use study::{CheckSize, LongRunPlan, StudyArgs, StudyPlan, reference_file};

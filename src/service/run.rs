@@ -5,7 +5,7 @@
 
 use super::notices::{self, Listener};
 use super::{ServiceError, Session};
-use crate::cli::{RunArgs, check_writable_file};
+use crate::cli::{RunArgs, check_writable_file, write_whole};
 use crate::methods::MethodKind;
 use crate::model::{Scene, analysis};
 use crate::plan::Planned;
@@ -119,7 +119,8 @@ pub fn run(args: &RunArgs, session: &Session) -> Result<Outcome, ServiceError> {
     }
     if let Some(path) = &args.summary {
         let json = serde_json::to_string_pretty(&summary).context("encoding the summary")?;
-        std::fs::write(path, json)
+        // Whole or not at all: a script may be waiting for it to appear.
+        write_whole(path, json.as_bytes())
             .with_context(|| format!("writing the summary to {}", path.display()))?;
     }
     if plans.len() == 1 && args.passes() == Some(1) {
