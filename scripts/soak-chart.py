@@ -1,10 +1,13 @@
 #!/usr/bin/env python3
 """Draws soaks' samples (the CSVs of `scripts/web-check.py --soak`) as one SVG chart.
 
-    scripts/soak-chart.py OUT.svg COLUMN LABEL=CSV [LABEL=CSV …]
+    scripts/soak-chart.py OUT.svg COLUMN LABEL=CSV[:COLUMN] [LABEL=CSV[:COLUMN] …]
 
-COLUMN is a column of the CSVs (browser_mb, wasm_mb, rope_mb, …), drawn against minutes. A
-soak whose page stopped answering ends with a cross at its last sample. Plain SVG, no
+COLUMN is a column of the CSVs (browser_mb, wasm_mb, rope_mb, …), drawn against minutes; a
+series may name a column of its own after its CSV (`total=native-growth.csv:viewer_mb`), so
+that several columns of one soak share a chart. A soak whose page stopped answering ends
+with a cross at its last sample (a CSV without page_alive, such as a native viewer's, has no
+page to stop). Plain SVG, no
 plotting library: it reads on GitHub and in any browser.
 """
 
@@ -17,23 +20,28 @@ WIDTH, HEIGHT, LEFT, RIGHT, TOP, BOTTOM = 820, 420, 70, 230, 30, 50
 
 
 def samples(path: pathlib.Path, column: str):
-    """(minutes, value, alive) of each sample with the column."""
+    """(minutes, value, alive) of each sample with the column, and whether the CSV has a page."""
     rows = []
     with path.open() as f:
-        for row in csv.DictReader(f):
+        reader = csv.DictReader(f)
+        for row in reader:
             if row.get(column) not in (None, ""):
-                rows.append((float(row["seconds"]) / 60, float(row[column]), row["page_alive"] == "1"))
-    return rows
+                alive = row.get("page_alive", "1") == "1"
+                rows.append((float(row["seconds"]) / 60, float(row[column]), alive))
+        return rows, "page_alive" in (reader.fieldnames or [])
 
 
 def main() -> int:
     if len(sys.argv) < 4:
         print(__doc__)
         return 2
-    out, column, soaks = pathlib.Path(sys.argv[1]), sys.argv[2], []
+    out, column, soaks, pages, own_columns = pathlib.Path(sys.argv[1]), sys.argv[2], [], False, False
     for arg in sys.argv[3:]:
         label, _, path = arg.partition("=")
-        soaks.append((label, samples(pathlib.Path(path), column)))
+        path, _, own = path.partition(":")
+        rows, page = samples(pathlib.Path(path), own or column)
+        soaks.append((label, rows))
+        pages, own_columns = pages or page, own_columns or bool(own)
     # The value of a page that stopped answering is not its own: drawn as a cross at the last
     # live sample instead.
     live = [[s for s in rows if s[2]] for _, rows in soaks]
@@ -60,7 +68,7 @@ def main() -> int:
         svg.append(f'<text x="{x(m):.1f}" y="{TOP + plot_h + 18}" text-anchor="middle">{m}</text>')
     svg.append(f'<text x="{LEFT + plot_w / 2}" y="{HEIGHT - 10}" text-anchor="middle">minutes</text>')
     svg.append(f'<text x="14" y="{TOP + plot_h / 2}" transform="rotate(-90 14 {TOP + plot_h / 2})" '
-               f'text-anchor="middle">{column} (MB)</text>')
+               f'text-anchor="middle">{"" if own_columns else column + " "}(MB)</text>')
     svg.append(f'<rect x="{LEFT}" y="{TOP}" width="{plot_w}" height="{plot_h}" fill="none" stroke="#888"/>')
     for k, ((label, rows), alive) in enumerate(zip(soaks, live)):
         colour = COLOURS[k % len(COLOURS)]
@@ -73,7 +81,8 @@ def main() -> int:
         svg.append(f'<line x1="{WIDTH - RIGHT + 12}" x2="{WIDTH - RIGHT + 32}" y1="{TOP + 10 + 22 * k}" '
                    f'y2="{TOP + 10 + 22 * k}" stroke="{colour}" stroke-width="3"/>')
         svg.append(f'<text x="{WIDTH - RIGHT + 38}" y="{TOP + 14 + 22 * k}">{label}</text>')
-    svg.append(f'<text x="{WIDTH - RIGHT + 12}" y="{TOP + 14 + 22 * len(soaks)}">✕ page stopped</text>')
+    if pages:
+        svg.append(f'<text x="{WIDTH - RIGHT + 12}" y="{TOP + 14 + 22 * len(soaks)}">✕ page stopped</text>')
     svg.append("</svg>")
     out.write_text("\n".join(svg) + "\n")
     print(f"soak-chart: wrote {out}")
