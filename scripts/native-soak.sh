@@ -8,7 +8,8 @@
 # JOIN says which endpoints the viewer joins: both (what a user is told to do), the
 # history's alone, or the live picture's alone (to tell which one the viewer's memory grows
 # with). PORT is the history's endpoint (default 9981; the live picture's is PORT + 1; the
-# viewer's own server takes PORT + 9). Writes assets/live-soak/native-JOIN.csv. Needs
+# viewer's own server takes PORT + 9). Writes assets/live-soak/native-JOIN.csv (where the
+# memory goes: scripts/native-growth.py). Needs
 # `pip install rerun-sdk==0.36.3` and Vulkan (apt-get install mesa-vulkan-drivers libvulkan1).
 set -euo pipefail
 cd "$(dirname "$0")/.."
