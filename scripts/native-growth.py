@@ -154,6 +154,9 @@ def main() -> int:
                 p.terminate()
         subprocess.run(["pkill", "-f", f"rerun --headless --port {viewer_port}"])
 
+    if not data.exists() or data.stat().st_size == 0:
+        sys.exit("native-growth: perf recorded nothing: " + (work / "perf.txt").read_text().strip()
+                 + " (perf needs root or kernel.perf_event_paranoid <= 1)")
     all_faults = list(faults(data))
     t0 = all_faults[0][0] if all_faults else 0.0
     spans = {start: end for _, _, rss in samples for start, (end, _) in rss.items()}
