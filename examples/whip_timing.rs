@@ -49,12 +49,13 @@ fn main() -> anyhow::Result<()> {
             .par_iter()
             .map(|&n| Trajectory::compute(&scene, n, DURATION))
             .collect::<anyhow::Result<_>>()?;
+        let whips: Vec<(f64, f64)> = runs.iter().map(whip).collect();
         for (i, &n) in levels.iter().enumerate() {
-            let (when, speed) = whip(&runs[i]);
+            let (when, speed) = whips[i];
             let gaps = if i == 0 {
                 String::from(",,")
             } else {
-                let shift = whip(&runs[i - 1]).0 - when;
+                let shift = whips[i - 1].0 - when;
                 let near: Vec<f64> = frames
                     .iter()
                     .copied()

@@ -37,7 +37,7 @@ import time
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 PERIOD = 64  # page faults per perf sample
-PAGE = 4096
+PAGE = os.sysconf("SC_PAGE_SIZE")  # bytes a page fault brings in
 
 
 def smaps_rss(pid: int) -> dict:
@@ -165,13 +165,13 @@ def main() -> int:
         home(a) for _, a, fr in all_faults if any("wgpu_core::device::map_buffer" in f for f in fr))
     staging.pop(None, None)
     region = staging.most_common(1)[0][0] if staging else None
+    stage = lambda sample: sample[2].get(region, (0, 0))[1] / 1000  # MB in the staging mapping
     with open(args.csv, "w") as f:
         f.write("seconds,viewer_mb,staging_mb,rest_mb\n")
-        for s, mb, rss in samples:
-            stage = rss.get(region, (0, 0))[1] / 1000
-            f.write(f"{s:.0f},{mb:.1f},{stage:.1f},{mb - stage:.1f}\n")
+        for sample in samples:
+            s, mb = sample[0], sample[1]
+            f.write(f"{s:.0f},{mb:.1f},{stage(sample):.1f},{mb - stage(sample):.1f}\n")
     first, last = samples[0], samples[-1]
-    stage = lambda s: s[2].get(region, (0, 0))[1] / 1000
     print(f"native-growth: {last[0]:.0f} s; viewer {first[1]:.1f} → {last[1]:.1f} MB; "
           f"the renderer's staging buffers {stage(first):.1f} → {stage(last):.1f} MB; "
           f"the rest {first[1] - stage(first):.1f} → {last[1] - stage(last):.1f} MB ({args.csv})")
