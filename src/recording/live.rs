@@ -10,8 +10,9 @@
 //!   trail, the tension profile and the caption, static, at every frame (at most
 //!   [`LIVE_PER_SECOND`] a second of wall time). A browser page kept it for an hour with its
 //!   memory flat; a native viewer on a software renderer rose in 32 MiB steps within 20
-//!   minutes, its renderer's staging buffers, which Rerun never gives back, while its store
-//!   grew with the history only (docs/measurements.md, "A page left open").
+//!   minutes, its renderer's staging buffers, which Rerun never gives back; the rest grew
+//!   16 MB in an hour, mostly its store keeping the history (docs/measurements.md, "A page
+//!   left open").
 //! * **the history** ([`Keeping::History`]): the time series at
 //!   [`HistoryRates::series_per_unit`] rows per time unit and the rope's shape at
 //!   [`HistoryRates::shapes_per_unit`], on the timelines, under `then/` so that scrubbing
