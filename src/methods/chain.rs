@@ -75,7 +75,8 @@ pub struct Chain {
     steps: u64,
     phi: Vec<f64>,
     omega: Vec<f64>,
-    stage_phi: Vec<f64>,
+    /// An RK4 stage's angles less the step's: φ_stage − φ.
+    stage_turn: Vec<f64>,
     stage_omega: Vec<f64>,
     sum_phi: Vec<f64>,
     sum_omega: Vec<f64>,
@@ -103,7 +104,7 @@ impl Chain {
             steps: 0,
             phi,
             omega,
-            stage_phi: vec![0.0; n],
+            stage_turn: vec![0.0; n],
             stage_omega: vec![0.0; n],
             sum_phi: vec![0.0; n],
             sum_omega: vec![0.0; n],
@@ -155,7 +156,8 @@ impl Chain {
     }
 
     /// The joint forces and angular accelerations at (φ, φ̇) = (`phi`, `omega`) under
-    /// `gravity` (the support's frame's, [`SupportLedger::gravity`]) into `alpha`.
+    /// `gravity` (the support's frame's, [`SupportLedger::gravity`]) into `alpha`; `phi`
+    /// becomes the base the step's later stages turn from ([`Chain::solve_turned`]).
     fn solve(
         solver: &mut ForceSolver,
         length: Option<&[f64]>,
@@ -165,10 +167,22 @@ impl Chain {
         alpha: &mut [f64],
     ) -> (f64, f64) {
         solver.gravity = gravity;
-        match length {
-            None => solver.accelerations(phi, omega, alpha),
-            Some(length) => solver.accelerations_graded(phi, omega, length, alpha),
-        }
+        solver.orient(phi);
+        solver.solve(omega, length, alpha)
+    }
+
+    /// As [`Chain::solve`], at the angles of the last [`Chain::solve`] turned by `turn`.
+    fn solve_turned(
+        solver: &mut ForceSolver,
+        length: Option<&[f64]>,
+        gravity: Vector2<f64>,
+        turn: &[f64],
+        omega: &[f64],
+        alpha: &mut [f64],
+    ) -> (f64, f64) {
+        solver.gravity = gravity;
+        solver.orient_turned(turn);
+        solver.solve(omega, length, alpha)
     }
 
     /// Accelerations and forces at the current state; returns the largest joint force and
@@ -217,22 +231,24 @@ impl Chain {
     }
 
     /// One classical RK4 step of size `dt` from (φ, φ̇) at time `start`, with stage-1
-    /// accelerations already in `self.alpha`.
+    /// accelerations already in `self.alpha` (and the solver oriented at φ). Each later
+    /// stage's angles are φ plus a turn, `stage_turn`, which the solver applies as a rotation
+    /// of the rods at φ.
     fn rk4(&mut self, start: f64, dt: f64) {
         let n = self.phi.len();
         for i in 0..n {
             self.sum_phi[i] = self.omega[i];
             self.sum_omega[i] = self.alpha[i];
-            self.stage_phi[i] = self.phi[i] + 0.5 * dt * self.omega[i];
+            self.stage_turn[i] = 0.5 * dt * self.omega[i];
             self.stage_omega[i] = self.omega[i] + 0.5 * dt * self.alpha[i];
         }
         // Each stage's time, then its weight and how far the next stage advances.
         for (at, weight, advance) in [(0.5, 2.0, 0.5 * dt), (0.5, 2.0, dt), (1.0, 1.0, 0.0)] {
-            Self::solve(
+            Self::solve_turned(
                 &mut self.solver,
                 self.length.as_deref(),
                 self.ledger.gravity(start + at * dt),
-                &self.stage_phi,
+                &self.stage_turn,
                 &self.stage_omega,
                 &mut self.alpha,
             );
@@ -240,7 +256,7 @@ impl Chain {
                 let (w, a) = (self.stage_omega[i], self.alpha[i]);
                 self.sum_phi[i] += weight * w;
                 self.sum_omega[i] += weight * a;
-                self.stage_phi[i] = self.phi[i] + advance * w;
+                self.stage_turn[i] = advance * w;
                 self.stage_omega[i] = self.omega[i] + advance * a;
             }
         }

@@ -4,20 +4,24 @@
 //! step the `chain` method, and to observe the tension of any chain of rods.
 
 use super::method::Observation;
-use nalgebra::{Matrix2, Vector2};
+use crate::model::geometry;
+use nalgebra::Vector2;
 
 /// Scratch of the joint-force solve, reused every evaluation.
 #[derive(Clone, Debug)]
 pub(crate) struct ForceSolver {
-    /// G_j = D'_j⁻¹ U_j
-    gain: Vec<Matrix2<f64>>,
+    /// G_j = D'_j⁻¹ U_j, row by row (xx, xy, yx, yy).
+    gain: Vec<[f64; 4]>,
     /// g_j = D'_j⁻¹ r'_j
     offset: Vec<Vector2<f64>>,
     /// Joint forces f_0 … f_{N−1} (f_N = 0).
     pub(crate) force: Vec<Vector2<f64>>,
-    /// Unit tangents and normals of the rods at the evaluation state.
+    /// Unit tangents (cos φ_i, sin φ_i) of the rods at the evaluation state; the normals are
+    /// n_i = (−sin φ_i, cos φ_i).
     pub(crate) tangent: Vec<Vector2<f64>>,
-    normal: Vec<Vector2<f64>>,
+    /// The tangents at the angles last given to [`ForceSolver::orient`]: what
+    /// [`ForceSolver::orient_turned`] turns from.
+    base: Vec<Vector2<f64>>,
     /// Gravity per unit mass in the frame the rods are written in (y down): (0, 1) under a
     /// fixed support, (−ẍ_s(t), 1) in the frame of a shaken one ([`Support::gravity`]). Only
     /// the support's row of the system carries it: every rod falls alike, so at the other
@@ -27,135 +31,168 @@ pub(crate) struct ForceSolver {
     pub(crate) gravity: Vector2<f64>,
 }
 
+/// The symmetric 2×2 block 3 n nᵀ (xx, xy, yy) of a rod with unit tangent `t` (n its normal).
+#[inline(always)]
+fn projector(t: Vector2<f64>) -> [f64; 3] {
+    [3.0 * t.y * t.y, -3.0 * t.x * t.y, 3.0 * t.x * t.x]
+}
+
 impl ForceSolver {
     pub(crate) fn new(n: usize) -> Self {
         Self {
-            gain: vec![Matrix2::zeros(); n],
+            gain: vec![[0.0; 4]; n],
             offset: vec![Vector2::zeros(); n],
             force: vec![Vector2::zeros(); n],
             tangent: vec![Vector2::zeros(); n],
-            normal: vec![Vector2::zeros(); n],
+            base: vec![Vector2::zeros(); n],
             gravity: Vector2::new(0.0, 1.0),
         }
     }
 
-    /// The rods' tangents and normals at angles `phi`; returns the largest |φ̇| of `omega`.
-    fn orient(&mut self, phi: &[f64], omega: &[f64]) -> f64 {
-        let mut max_rate: f64 = 0.0;
-        for i in 0..phi.len() {
-            let (s, c) = phi[i].sin_cos();
-            self.tangent[i] = Vector2::new(c, s);
-            self.normal[i] = Vector2::new(-s, c);
-            max_rate = max_rate.max(omega[i].abs());
+    /// Orients the rods at angles `phi`, and keeps these tangents as the base that
+    /// [`ForceSolver::orient_turned`] turns from.
+    pub(crate) fn orient(&mut self, phi: &[f64]) {
+        for ((t, b), &angle) in self.tangent.iter_mut().zip(&mut self.base).zip(phi) {
+            *t = geometry::tangent(angle);
+            *b = *t;
         }
-        max_rate
     }
 
-    /// Joint forces for angles `phi` and rates `omega`, then the angular accelerations.
-    /// Returns the largest joint force and the largest |φ̇|, which set the stable step.
+    /// Orients the rods at the base angles (the last [`ForceSolver::orient`]) plus `turn`:
+    /// an RK4 stage's angles, φ + a φ̇, from the step's own by rotation rather than by a sine
+    /// and cosine of each rod (the turns within a step are small: [`geometry::turned`]).
+    pub(crate) fn orient_turned(&mut self, turn: &[f64]) {
+        for ((t, b), &delta) in self.tangent.iter_mut().zip(&self.base).zip(turn) {
+            *t = geometry::turned(*b, delta);
+        }
+    }
+
+    /// Joint forces for angles `phi` and rates `omega` of equal rods, then the angular
+    /// accelerations. Returns the largest joint force and the largest |φ̇|, which set the
+    /// stable step.
     pub(crate) fn accelerations(
         &mut self,
         phi: &[f64],
         omega: &[f64],
         alpha: &mut [f64],
     ) -> (f64, f64) {
-        let n = phi.len();
-        let h = 1.0 / n as f64;
-        let m = h;
-        let eye = Matrix2::identity();
-        let max_rate = self.orient(phi, omega);
-        let projector = |v: &Vector2<f64>| 3.0 * v * v.transpose();
-        let half_mh = 0.5 * m * h;
-        // Forward elimination.
-        let mut p_prev = projector(&self.normal[0]);
-        let mut diag = eye + p_prev;
-        let mut rhs = -m * self.gravity - half_mh * omega[0] * omega[0] * self.tangent[0];
-        for j in 0..n {
-            if j > 0 {
-                let p = projector(&self.normal[j]);
-                let lower = p_prev - eye; // 3P_{j−1} − I, also U_{j−1}
-                diag = 2.0 * eye + p_prev + p - lower * self.gain[j - 1];
-                rhs = -half_mh
-                    * (omega[j - 1] * omega[j - 1] * self.tangent[j - 1]
-                        + omega[j] * omega[j] * self.tangent[j])
-                    - lower * self.offset[j - 1];
-                p_prev = p;
+        self.orient(phi);
+        self.solve(omega, None, alpha)
+    }
+
+    /// Joint forces at the orientation set last ([`ForceSolver::orient`] or
+    /// [`ForceSolver::orient_turned`]) and rates `omega`, then the angular accelerations, for
+    /// rods of lengths `length` (summing to 1, mass equal to length; `None`: N equal rods).
+    /// Returns the largest joint force and the largest |φ̇|, which set the stable step.
+    ///
+    /// Each joint's row of the system is the uniform one (module doc of `chain.rs`) with every
+    /// rod's blocks divided by its own mass, multiplied through by the length of the rod after
+    /// the joint; for equal rods the ratio of neighbours' lengths is 1 and the rows are the
+    /// uniform ones. Block Thomas, every block written out: the pivots D'_j and U_j G_j are
+    /// symmetric (U_j = 3P_j − I is), so three numbers each.
+    pub(crate) fn solve(
+        &mut self,
+        omega: &[f64],
+        length: Option<&[f64]>,
+        alpha: &mut [f64],
+    ) -> (f64, f64) {
+        let max_rate = omega.iter().fold(0.0f64, |m, w| m.max(w.abs()));
+        let max_force = match length {
+            // Written twice so that equal rods' ratio of 1 folds away.
+            None => {
+                let h = 1.0 / omega.len() as f64;
+                self.eliminate(omega, alpha, |_| h, |_| 1.0)
             }
-            // The system is SPD, so every pivot block is invertible; a failure means the
-            // state is already non-finite, which the caller detects.
-            let inv = diag
-                .try_inverse()
-                .unwrap_or_else(|| Matrix2::from_element(f64::NAN));
-            self.gain[j] = if j + 1 < n {
-                inv * (p_prev - eye) // U_j = 3P_j − I
+            Some(l) => self.eliminate(omega, alpha, |i| l[i], |j| l[j] / l[j - 1]),
+        };
+        (max_force, max_rate)
+    }
+
+    /// Block Thomas for rods of lengths `rod(i)`, the ratio of rod j's length to rod j − 1's
+    /// being `ratio(j)`; returns the largest joint force. The forward sweep is a chain of
+    /// dependent 2×2 inversions, so what the next pivot needs (U_j G_j = U_j adj(D'_j) U_j /
+    /// det D'_j) is formed beside the determinant and scaled once it is known, off the chain.
+    #[inline(always)]
+    fn eliminate(
+        &mut self,
+        omega: &[f64],
+        alpha: &mut [f64],
+        rod: impl Fn(usize) -> f64,
+        ratio: impl Fn(usize) -> f64,
+    ) -> f64 {
+        let n = omega.len();
+        // Forward elimination. What row j + 1 takes from row j: U_j G_j (symmetric) and U_j g_j.
+        let mut carry = [0.0; 3];
+        let mut carry_rhs = Vector2::zeros();
+        let mut p_prev = [0.0; 3];
+        // The centripetal pull of rod i on its ends, (h_i/2) φ̇_i² t_i.
+        let mut spin_prev = Vector2::zeros();
+        for (j, &rate) in omega.iter().enumerate() {
+            let t = self.tangent[j];
+            let p = projector(t);
+            let l = rod(j);
+            let spin = 0.5 * l * rate * rate * t;
+            let (d, rhs) = if j == 0 {
+                // (I + 3P_0) f_0 + … = −m_0 ŷ − m_0 (h_0/2) φ̇_0² t_0
+                ([1.0 + p[0], p[1], 1.0 + p[2]], l * (-self.gravity - spin))
             } else {
-                Matrix2::zeros()
+                let ratio = ratio(j);
+                (
+                    [
+                        ratio * (1.0 + p_prev[0] - carry[0]) + 1.0 + p[0],
+                        ratio * (p_prev[1] - carry[1]) + p[1],
+                        ratio * (1.0 + p_prev[2] - carry[2]) + 1.0 + p[2],
+                    ],
+                    -l * (spin_prev + spin) - ratio * carry_rhs,
+                )
             };
-            self.offset[j] = inv * rhs;
+            // The system is SPD, so every pivot is invertible; a zero or non-finite
+            // determinant means the state is already non-finite, which the caller detects.
+            let inv_det = 1.0 / (d[0] * d[2] - d[1] * d[1]);
+            // adj(D') r'
+            let (ar_x, ar_y) = (d[2] * rhs.x - d[1] * rhs.y, d[0] * rhs.y - d[1] * rhs.x);
+            let g = Vector2::new(ar_x * inv_det, ar_y * inv_det);
+            self.offset[j] = g;
+            if j + 1 < n {
+                // U_j = 3P_j − I; adj(D'_j) U_j, then G_j = adj(D'_j) U_j / det.
+                let (uxx, uxy, uyy) = (p[0] - 1.0, p[1], p[2] - 1.0);
+                let au = [
+                    d[2] * uxx - d[1] * uxy,
+                    d[2] * uxy - d[1] * uyy,
+                    d[0] * uxy - d[1] * uxx,
+                    d[0] * uyy - d[1] * uxy,
+                ];
+                let uau = [
+                    uxx * au[0] + uxy * au[2],
+                    uxx * au[1] + uxy * au[3],
+                    uxy * au[1] + uyy * au[3],
+                ];
+                self.gain[j] = au.map(|x| x * inv_det);
+                carry = uau.map(|x| x * inv_det);
+                carry_rhs = Vector2::new(uxx * g.x + uxy * g.y, uxy * g.x + uyy * g.y);
+            } else {
+                self.gain[j] = [0.0; 4];
+            }
+            p_prev = p;
+            spin_prev = spin;
         }
-        // Back-substitution and φ̈_i = −(6/(m h)) n_i · (f_i + f_{i+1}).
-        let scale = -6.0 / (m * h);
+        // Back-substitution, f_j = g_j − G_j f_{j+1}, and φ̈_i = −(6/(m_i h_i)) n_i · (f_i + f_{i+1}).
         let mut after = Vector2::zeros(); // f_{j+1}
         let mut max_force2: f64 = 0.0;
         for j in (0..n).rev() {
-            let f = self.offset[j] - self.gain[j] * after;
+            let gain = &self.gain[j];
+            let f = self.offset[j]
+                - Vector2::new(
+                    gain[0] * after.x + gain[1] * after.y,
+                    gain[2] * after.x + gain[3] * after.y,
+                );
             self.force[j] = f;
-            alpha[j] = scale * self.normal[j].dot(&(f + after));
+            let (t, sum, l) = (self.tangent[j], f + after, rod(j));
+            alpha[j] = -6.0 / (l * l) * (t.x * sum.y - t.y * sum.x);
             max_force2 = max_force2.max(f.norm_squared());
             after = f;
         }
-        (max_force2.sqrt(), max_rate)
-    }
-
-    /// As [`ForceSolver::accelerations`], for rods of lengths `length` (summing to 1, mass
-    /// equal to length): each joint's row of the system is the uniform one with every rod's
-    /// blocks divided by its own mass, multiplied through by the length of the rod after the
-    /// joint. For graded rods, shorter towards the free end.
-    pub(crate) fn accelerations_graded(
-        &mut self,
-        phi: &[f64],
-        omega: &[f64],
-        length: &[f64],
-        alpha: &mut [f64],
-    ) -> (f64, f64) {
-        let n = phi.len();
-        let eye = Matrix2::identity();
-        let max_rate = self.orient(phi, omega);
-        let projector = |v: &Vector2<f64>| 3.0 * v * v.transpose();
-        // The centripetal pull of rod i on its ends, (h_i/2) φ̇_i² t_i.
-        let spin = |i: usize| 0.5 * length[i] * omega[i] * omega[i] * self.tangent[i];
-        let mut p_prev = projector(&self.normal[0]);
-        let mut diag = eye + p_prev;
-        let mut rhs = length[0] * (-self.gravity - spin(0));
-        for j in 0..n {
-            if j > 0 {
-                let p = projector(&self.normal[j]);
-                let ratio = length[j] / length[j - 1];
-                let lower = ratio * (p_prev - eye);
-                diag = ratio * (eye + p_prev) + eye + p - lower * self.gain[j - 1];
-                rhs = -length[j] * (spin(j - 1) + spin(j)) - lower * self.offset[j - 1];
-                p_prev = p;
-            }
-            let inv = diag
-                .try_inverse()
-                .unwrap_or_else(|| Matrix2::from_element(f64::NAN));
-            self.gain[j] = if j + 1 < n {
-                inv * (p_prev - eye)
-            } else {
-                Matrix2::zeros()
-            };
-            self.offset[j] = inv * rhs;
-        }
-        let mut after = Vector2::zeros();
-        let mut max_force2: f64 = 0.0;
-        for j in (0..n).rev() {
-            let f = self.offset[j] - self.gain[j] * after;
-            self.force[j] = f;
-            alpha[j] = -6.0 / (length[j] * length[j]) * self.normal[j].dot(&(f + after));
-            max_force2 = max_force2.max(f.norm_squared());
-            after = f;
-        }
-        (max_force2.sqrt(), max_rate)
+        max_force2.sqrt()
     }
 
     /// Tension on each rod: the mean pull of its two joints along it.
@@ -182,5 +219,107 @@ impl ForceSolver {
             };
             -0.5 * self.tangent[i].dot(&(self.force[i] + after))
         }));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::{DMatrix, DVector};
+
+    /// The joint forces from Newton–Euler for each rod and the condition that the support
+    /// stays put and neighbouring rods' ends move together, written as one dense system and
+    /// solved by LU: rod i's centre accelerates by (f_i − f_{i+1})/m_i + g, it turns by
+    /// φ̈_i = −(6/(m_i h_i)) n_i · (f_i + f_{i+1}), and its ends by that ∓ (h_i/2)(φ̈_i n_i − φ̇_i² t_i).
+    fn dense_forces(
+        phi: &[f64],
+        omega: &[f64],
+        length: &[f64],
+        gravity: Vector2<f64>,
+    ) -> Vec<Vector2<f64>> {
+        let n = phi.len();
+        let t: Vec<_> = phi.iter().map(|&a| geometry::tangent(a)).collect();
+        let normal = |i: usize| Vector2::new(-t[i].y, t[i].x);
+        // An end's acceleration as (coefficients of f, constant): sign −1 its start, +1 its end.
+        let end = |i: usize, sign: f64| {
+            let mut row = DMatrix::<f64>::zeros(2, 2 * n);
+            let m = length[i];
+            let turn = -6.0 / (m * length[i]);
+            for (k, weight) in [(i, 1.0), (i + 1, -1.0)] {
+                if k == n {
+                    continue;
+                }
+                for c in 0..2 {
+                    let mut unit = Vector2::zeros();
+                    unit[c] = 1.0;
+                    // Centre: weight f_k / m; turning: n · (f_i + f_{i+1}), both ends add.
+                    let centre = weight * unit / m;
+                    let spin = sign * 0.5 * length[i] * turn * normal(i).dot(&unit) * normal(i);
+                    let column = centre + spin;
+                    row[(0, 2 * k + c)] += column.x;
+                    row[(1, 2 * k + c)] += column.y;
+                }
+            }
+            let constant = gravity - sign * 0.5 * length[i] * omega[i] * omega[i] * t[i];
+            (row, constant)
+        };
+        let mut a = DMatrix::<f64>::zeros(2 * n, 2 * n);
+        let mut b = DVector::<f64>::zeros(2 * n);
+        for j in 0..n {
+            // Joint j: the start of rod j where the end of rod j − 1 (or the support) is.
+            let (start, c_start) = end(j, -1.0);
+            let (row, constant) = match j {
+                0 => (start, c_start),
+                _ => {
+                    let (before, c_before) = end(j - 1, 1.0);
+                    (start - before, c_start - c_before)
+                }
+            };
+            a.view_mut((2 * j, 0), (2, 2 * n)).copy_from(&row);
+            b[2 * j] = -constant.x;
+            b[2 * j + 1] = -constant.y;
+        }
+        let f = a.lu().solve(&b).expect("the system is regular");
+        (0..n)
+            .map(|j| Vector2::new(f[2 * j], f[2 * j + 1]))
+            .collect()
+    }
+
+    #[test]
+    fn the_joint_forces_keep_the_rods_joined_equal_and_graded() {
+        let n = 9;
+        // A bent, spinning chain, and a shaken support's sideways gravity.
+        let phi: Vec<f64> = (0..n)
+            .map(|i| 0.3 + 0.9 * (i as f64).sin() - 0.2 * i as f64)
+            .collect();
+        let omega: Vec<f64> = (0..n).map(|i| 2.0 * (1.7 * i as f64).cos()).collect();
+        let gravity = Vector2::new(-0.4, 1.0);
+        let equal = vec![1.0 / n as f64; n];
+        let edge = |i: usize| 1.0 - (1.0 - i as f64 / n as f64).powf(1.5);
+        let graded: Vec<f64> = (0..n).map(|i| edge(i + 1) - edge(i)).collect();
+        for (length, rods) in [(None, &equal), (Some(graded.as_slice()), &graded)] {
+            let mut solver = ForceSolver::new(n);
+            solver.gravity = gravity;
+            let mut alpha = vec![0.0; n];
+            solver.orient(&phi);
+            solver.solve(&omega, length, &mut alpha);
+            let want = dense_forces(&phi, &omega, rods, gravity);
+            for (j, (got, want)) in solver.force.iter().zip(&want).enumerate() {
+                assert!(
+                    (got - want).norm() < 1e-12 * (1.0 + want.norm()),
+                    "graded: {}, joint {j}: {got:?} against {want:?}",
+                    length.is_some()
+                );
+            }
+            // And turned from another base: the same forces at the same angles.
+            solver.orient(&vec![0.1; n]);
+            let turn: Vec<f64> = phi.iter().map(|a| a - 0.1).collect();
+            solver.orient_turned(&turn);
+            let mut turned_alpha = vec![0.0; n];
+            solver.solve(&omega, length, &mut turned_alpha);
+            for (a, b) in alpha.iter().zip(&turned_alpha) {
+                assert!((a - b).abs() < 1e-10 * (1.0 + a.abs()), "{a} against {b}");
+            }
+        }
     }
 }

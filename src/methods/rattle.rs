@@ -94,18 +94,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     build: |scene, segments, dt| Ok(Box::new(Rattle::new(scene, segments, dt)?)),
 };
 
-/// (cos, sin) of θ + δ from those of θ: the series where δ is a Newton correction (its
-/// error, δ⁴/24, is below round-off), the sine and cosine otherwise.
-fn turned(tangent: Vector2<f64>, delta: f64) -> Vector2<f64> {
-    let (s, c) = if delta.abs() < 1e-4 {
-        let d2 = delta * delta;
-        (delta * (1.0 - d2 / 6.0), 1.0 - 0.5 * d2)
-    } else {
-        delta.sin_cos()
-    };
-    Vector2::new(tangent.x * c - tangent.y * s, tangent.y * c + tangent.x * s)
-}
-
 /// A configuration and its momenta.
 #[derive(Clone, Debug)]
 struct State {
@@ -282,7 +270,7 @@ impl Rattle {
             now.centre[j] -= (after - delta) / h;
             let turn = -half * self.matrix.normal[j].dot(&(delta + after)) / inertia;
             now.angle[j] += turn;
-            now.tangent[j] = turned(now.tangent[j], turn);
+            now.tangent[j] = geometry::turned(now.tangent[j], turn);
             if j + 1 < n {
                 let end = now.centre[j] + half * now.tangent[j];
                 let gap = end - (now.centre[j + 1] - half * now.tangent[j + 1]);
