@@ -287,7 +287,12 @@ mod tests {
 
     #[test]
     fn the_joint_forces_keep_the_rods_joined_equal_and_graded() {
-        let n = 9;
+        for n in [2, 3, 9, 10] {
+            joined(n);
+        }
+    }
+
+    fn joined(n: usize) {
         // A bent, spinning chain, and a shaken support's sideways gravity.
         let phi: Vec<f64> = (0..n)
             .map(|i| 0.3 + 0.9 * (i as f64).sin() - 0.2 * i as f64)
@@ -307,7 +312,7 @@ mod tests {
             for (j, (got, want)) in solver.force.iter().zip(&want).enumerate() {
                 assert!(
                     (got - want).norm() < 1e-12 * (1.0 + want.norm()),
-                    "graded: {}, joint {j}: {got:?} against {want:?}",
+                    "N = {n}, graded: {}, joint {j}: {got:?} against {want:?}",
                     length.is_some()
                 );
             }
