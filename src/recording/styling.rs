@@ -78,7 +78,8 @@ pub(super) fn log_scale(rec: &RecordingStream, hued: bool) -> rerun::RecordingSt
 }
 
 /// Static axes for the tension profile: s from the support (0) to the tip (1) along the
-/// bottom, F drawn upward with guide lines at F = 0.5, 1, 1.5 and 2.
+/// bottom, its ticks labelled below it, F drawn upward with guide lines at F = 0.5, 1, 1.5
+/// and 2.
 pub(super) fn log_profile_axes(rec: &RecordingStream) -> rerun::RecordingStreamResult<()> {
     let grey = rerun::Color::from_unmultiplied_rgba(160, 160, 160, 140);
     let mut strips = vec![[[0.0f32, 0.0], [1.0, 0.0]], [[0.0, 0.0], [0.0, -2.0]]];
@@ -87,18 +88,27 @@ pub(super) fn log_profile_axes(rec: &RecordingStream) -> rerun::RecordingStreamR
         strips.push([[0.0, -f], [1.0, -f]]);
         labels.push(format!("F = {f}"));
     }
+    let mut colors = vec![grey; strips.len()];
+    // Unseen lines below the axis and above F = 2 (y points down): the view fits its data,
+    // not the labels drawn below and over it, and in a short panel (the live layout's) the
+    // s labels and the top F label were cut.
+    for y in [PROFILE_MARGIN, -2.0 - PROFILE_MARGIN] {
+        strips.push([[0.0, y], [1.0, y]]);
+        labels.push(String::new());
+        colors.push(rerun::Color::from_unmultiplied_rgba(0, 0, 0, 0));
+    }
     rec.log_static(
         path::PROFILE_AXES,
         &rerun::LineStrips2D::new(strips)
             .with_radii([0.002])
-            .with_colors([grey])
+            .with_colors(colors)
             .with_labels(labels),
     )?;
-    // The s axis's ticks (y points down); the view's title names the axis.
-    let ticks = [0.0f32, 0.25, 0.5, 0.75, 1.0];
-    // Just above the axis: the view fits its data, and a label below it would be cut.
-    let points: Vec<[f32; 2]> = ticks.iter().map(|&s| [s, -0.08]).collect();
-    let names: Vec<String> = ticks.iter().map(|s| format!("s = {s}")).collect();
+    // The s axis's ticks, on it, labelled by their values alone: the view's title names the
+    // axis ("s: support 0 … tip 1"), and in a narrow panel longer labels overlapped.
+    let ticks = [0.0f32, 0.5, 1.0];
+    let points: Vec<[f32; 2]> = ticks.iter().map(|&s| [s, 0.0]).collect();
+    let names: Vec<String> = ticks.iter().map(|s| format!("{s}")).collect();
     rec.log_static(
         path::PROFILE_TICKS,
         &rerun::Points2D::new(points)
@@ -108,6 +118,10 @@ pub(super) fn log_profile_axes(rec: &RecordingStream) -> rerun::RecordingStreamR
             .with_show_labels(true),
     )
 }
+
+/// How far below the tension profile's s axis, and above its F = 2 line, its view reaches (in
+/// string lengths, F in m g): room for the labels in a panel a quarter of the window high.
+const PROFILE_MARGIN: f32 = 0.35;
 
 /// A shaken support's track: a line from −A to A through the support's rest position, along
 /// which the rope's top end slides, and the support's label saying so (nothing for a fixed
