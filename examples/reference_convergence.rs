@@ -5,11 +5,11 @@
 //! last three levels (the largest change of the extrapolation when it is made one level
 //! finer). This is the measurement that says what a converged reference costs.
 //!
-//! `cargo run --release --example reference_convergence -- 30,52 200 3200 [RATE [GRADING]]`
-//! (angles in degrees, the coarsest N, the finest N, the frames a time unit compared, 1000
-//! unless given: the tolerance check's 60 misses the whip's peaks between its frames; and
-//! rods graded towards the free end, s_i = 1 − (1 − i/N)^GRADING, where GRADING is given and
-//! not 1: `Chain::graded`).
+//! `cargo run --release --example reference_convergence -- 30,52 200 3200 [RATE [GRADING
+//! [DURATION]]]` (angles in degrees, the coarsest N, the finest N, the frames a time unit
+//! compared, 1000 unless given: the tolerance check's 60 misses the whip's peaks between its
+//! frames; rods graded towards the free end, s_i = 1 − (1 − i/N)^GRADING, where GRADING is
+//! given and not 1: `Chain::graded`; and the time run, 3 unless given).
 
 use rayon::prelude::*;
 use rope::methods::chain::Chain;
@@ -22,16 +22,18 @@ use std::time::Instant;
 /// Frames per time unit at which the levels are compared unless told: fine enough to judge
 /// between frames.
 const COMPARE_RATE: f64 = 1000.0;
+/// The time run unless told: the tolerance check's.
 const DURATION: f64 = 3.0;
 
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let (angles, coarsest, finest, rate, grading) = match args.as_slice() {
-        [a, c, f] => (a, c, f, COMPARE_RATE, 1.0),
-        [a, c, f, r] => (a, c, f, r.parse()?, 1.0),
-        [a, c, f, r, g] => (a, c, f, r.parse()?, g.parse()?),
+    let (angles, coarsest, finest, rate, grading, duration) = match args.as_slice() {
+        [a, c, f] => (a, c, f, COMPARE_RATE, 1.0, DURATION),
+        [a, c, f, r] => (a, c, f, r.parse()?, 1.0, DURATION),
+        [a, c, f, r, g] => (a, c, f, r.parse()?, g.parse()?, DURATION),
+        [a, c, f, r, g, d] => (a, c, f, r.parse()?, g.parse()?, d.parse()?),
         _ => anyhow::bail!(
-            "usage: reference_convergence ANGLES COARSEST_N FINEST_N [RATE [GRADING]]"
+            "usage: reference_convergence ANGLES COARSEST_N FINEST_N [RATE [GRADING [DURATION]]]"
         ),
     };
     let angles: Vec<f64> = angles
@@ -43,7 +45,7 @@ fn main() -> anyhow::Result<()> {
     while levels.last().is_some_and(|&n| 2 * n <= finest) {
         levels.push(2 * levels[levels.len() - 1]);
     }
-    let frames = frame_times(DURATION, rate);
+    let frames = frame_times(duration, rate);
     println!("angle_deg,segments,wall_s,change_from_half,order,own_error");
     for angle_deg in angles {
         let scene = Scene::Release { angle_deg };
@@ -52,8 +54,8 @@ fn main() -> anyhow::Result<()> {
             .map(|&n| {
                 let started = Instant::now(); // wall time: the levels run in parallel
                 let path = match grading {
-                    1.0 => Trajectory::compute(&scene, n, DURATION)?,
-                    p => graded(&scene, n, p)?,
+                    1.0 => Trajectory::compute(&scene, n, duration)?,
+                    p => graded(&scene, n, p, duration)?,
                 };
                 Ok((path, started.elapsed().as_secs_f64()))
             })
@@ -94,8 +96,8 @@ fn main() -> anyhow::Result<()> {
 
 /// The chain of `n` rods graded with `exponent`, at the equal rods' default step (its
 /// substeps follow each rod's own wave and spin), its tip kept at every step to two past
-/// [`DURATION`].
-fn graded(scene: &Scene, n: usize, exponent: f64) -> anyhow::Result<Trajectory> {
+/// `duration`.
+fn graded(scene: &Scene, n: usize, exponent: f64, duration: f64) -> anyhow::Result<Trajectory> {
     let dt = MethodKind::Chain.default_dt(n);
     let mut chain = Chain::graded(scene, n, dt, exponent)?;
     let length = chain.lengths();
@@ -107,7 +109,7 @@ fn graded(scene: &Scene, n: usize, exponent: f64) -> anyhow::Result<Trajectory> 
                 p + l * nalgebra::Vector2::new(phi.cos(), phi.sin())
             })
     };
-    let last = (DURATION / dt).round() as usize;
+    let last = (duration / dt).round() as usize;
     let mut tips = vec![tip(chain.angles())];
     for _ in 0..last + 2 {
         chain

@@ -66,6 +66,14 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     build: |scene, segments, dt| Ok(Box::new(Chain::new(scene, segments, dt)?)),
 };
 
+/// Where a solve puts the rods: at angles φ (which become the base of the step's later
+/// stages), or at the last such angles turned by a turn each (an RK4 stage's, φ + a φ̇).
+#[derive(Clone, Copy)]
+enum Rods<'a> {
+    At(&'a [f64]),
+    Turned(&'a [f64]),
+}
+
 /// The chain's state and RK4 scratch.
 #[derive(Clone, Debug)]
 pub struct Chain {
@@ -155,33 +163,21 @@ impl Chain {
             .unwrap_or_else(|| vec![1.0 / n as f64; n])
     }
 
-    /// The joint forces and angular accelerations at (φ, φ̇) = (`phi`, `omega`) under
-    /// `gravity` (the support's frame's, [`SupportLedger::gravity`]) into `alpha`; `phi`
-    /// becomes the base the step's later stages turn from ([`Chain::solve_turned`]).
+    /// The joint forces and angular accelerations with the rods at `rods` and rates `omega`
+    /// under `gravity` (the support's frame's, [`SupportLedger::gravity`]) into `alpha`.
     fn solve(
         solver: &mut ForceSolver,
         length: Option<&[f64]>,
         gravity: Vector2<f64>,
-        phi: &[f64],
+        rods: Rods,
         omega: &[f64],
         alpha: &mut [f64],
     ) -> (f64, f64) {
         solver.gravity = gravity;
-        solver.orient(phi);
-        solver.solve(omega, length, alpha)
-    }
-
-    /// As [`Chain::solve`], at the angles of the last [`Chain::solve`] turned by `turn`.
-    fn solve_turned(
-        solver: &mut ForceSolver,
-        length: Option<&[f64]>,
-        gravity: Vector2<f64>,
-        turn: &[f64],
-        omega: &[f64],
-        alpha: &mut [f64],
-    ) -> (f64, f64) {
-        solver.gravity = gravity;
-        solver.orient_turned(turn);
+        match rods {
+            Rods::At(phi) => solver.orient(phi),
+            Rods::Turned(turn) => solver.orient_turned(turn),
+        }
         solver.solve(omega, length, alpha)
     }
 
@@ -193,7 +189,7 @@ impl Chain {
             &mut self.solver,
             self.length.as_deref(),
             gravity,
-            &self.phi,
+            Rods::At(&self.phi),
             &self.omega,
             &mut self.alpha,
         );
@@ -244,11 +240,11 @@ impl Chain {
         }
         // Each stage's time, then its weight and how far the next stage advances.
         for (at, weight, advance) in [(0.5, 2.0, 0.5 * dt), (0.5, 2.0, dt), (1.0, 1.0, 0.0)] {
-            Self::solve_turned(
+            Self::solve(
                 &mut self.solver,
                 self.length.as_deref(),
                 self.ledger.gravity(start + at * dt),
-                &self.stage_turn,
+                Rods::Turned(&self.stage_turn),
                 &self.stage_omega,
                 &mut self.alpha,
             );
@@ -307,7 +303,7 @@ impl Method for Chain {
                     &mut self.solver,
                     self.length.as_deref(),
                     self.ledger.gravity(start),
-                    &self.phi,
+                    Rods::At(&self.phi),
                     &self.omega,
                     &mut self.alpha,
                 );
