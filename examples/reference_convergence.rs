@@ -12,9 +12,6 @@
 //! given and not 1: `Chain::graded`; and the time run, 3 unless given).
 
 use rayon::prelude::*;
-use rope::methods::chain::Chain;
-use rope::methods::{Method, MethodKind};
-use rope::model::Point;
 use rope::model::Scene;
 use rope::study::trajectory::{Trajectory, frame_times};
 use std::time::Instant;
@@ -55,7 +52,7 @@ fn main() -> anyhow::Result<()> {
                 let started = Instant::now(); // wall time: the levels run in parallel
                 let path = match grading {
                     1.0 => Trajectory::compute(&scene, n, duration)?,
-                    p => graded(&scene, n, p, duration)?,
+                    p => Trajectory::compute_graded(&scene, n, duration, p)?,
                 };
                 Ok((path, started.elapsed().as_secs_f64()))
             })
@@ -92,30 +89,4 @@ fn main() -> anyhow::Result<()> {
         }
     }
     Ok(())
-}
-
-/// The chain of `n` rods graded with `exponent`, at the equal rods' default step (its
-/// substeps follow each rod's own wave and spin), its tip kept at every step to two past
-/// `duration`.
-fn graded(scene: &Scene, n: usize, exponent: f64, duration: f64) -> anyhow::Result<Trajectory> {
-    let dt = MethodKind::Chain.default_dt(n);
-    let mut chain = Chain::graded(scene, n, dt, exponent)?;
-    let length = chain.lengths();
-    let tip = |angles: &[f64]| {
-        angles
-            .iter()
-            .zip(&length)
-            .fold(Point::origin(), |p, (&phi, &l)| {
-                p + l * nalgebra::Vector2::new(phi.cos(), phi.sin())
-            })
-    };
-    let last = (duration / dt).round() as usize;
-    let mut tips = vec![tip(chain.angles())];
-    for _ in 0..last + 2 {
-        chain
-            .step()
-            .map_err(|d| anyhow::anyhow!("graded chain at N = {n}: {d}"))?;
-        tips.push(tip(chain.angles()));
-    }
-    Ok(Trajectory::new(dt, tips))
 }

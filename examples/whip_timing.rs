@@ -6,7 +6,9 @@
 //! coincide. If the shifted gap near the whip is far below the raw one, the levels differ
 //! mostly in when the whip comes, and a reference could be extrapolated on its instant.
 //!
-//! `cargo run --release --example whip_timing -- 30,0 200 1600`
+//! `cargo run --release --example whip_timing -- 30,0 200 1600 [GRADING]` (GRADING given and
+//! not 1: rods graded towards the free end, s_i = 1 − (1 − i/N)^GRADING,
+//! [`Trajectory::compute_graded`]).
 
 use rayon::prelude::*;
 use rope::model::Scene;
@@ -30,8 +32,10 @@ fn whip(path: &Trajectory) -> (f64, f64) {
 
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let [angles, coarsest, finest] = args.as_slice() else {
-        anyhow::bail!("usage: whip_timing ANGLES COARSEST_N FINEST_N");
+    let (angles, coarsest, finest, grading) = match args.as_slice() {
+        [a, c, f] => (a, c, f, 1.0),
+        [a, c, f, g] => (a, c, f, g.parse()?),
+        _ => anyhow::bail!("usage: whip_timing ANGLES COARSEST_N FINEST_N [GRADING]"),
     };
     let (coarsest, finest): (usize, usize) = (coarsest.parse()?, finest.parse()?);
     let mut levels = vec![coarsest];
@@ -47,7 +51,10 @@ fn main() -> anyhow::Result<()> {
         let scene = Scene::Release { angle_deg };
         let runs: Vec<Trajectory> = levels
             .par_iter()
-            .map(|&n| Trajectory::compute(&scene, n, DURATION))
+            .map(|&n| match grading {
+                1.0 => Trajectory::compute(&scene, n, DURATION),
+                p => Trajectory::compute_graded(&scene, n, DURATION, p),
+            })
             .collect::<anyhow::Result<_>>()?;
         let whips: Vec<(f64, f64)> = runs.iter().map(whip).collect();
         for (i, &n) in levels.iter().enumerate() {

@@ -1,7 +1,8 @@
 //! A run's tip at every one of its steps, to be read at any time: what a study's errors are
 //! measured against at every frame.
 
-use crate::methods::MethodKind;
+use crate::methods::chain::Chain;
+use crate::methods::{Method, MethodKind};
 use crate::model::Scene;
 use crate::model::geometry::{self, Point};
 
@@ -46,6 +47,38 @@ impl Trajectory {
             duration,
         )?
         .trajectory)
+    }
+
+    /// As [`Trajectory::compute`], on `segments` rods graded towards the free end with
+    /// `exponent` ([`Chain::graded`]), at the equal rods' default step (the substeps follow
+    /// each rod's own wave and spin).
+    pub fn compute_graded(
+        scene: &Scene,
+        segments: usize,
+        duration: f64,
+        exponent: f64,
+    ) -> anyhow::Result<Self> {
+        let dt = MethodKind::Chain.default_dt(segments);
+        let mut chain = Chain::graded(scene, segments, dt, exponent)?;
+        let length = chain.lengths();
+        let tip = |angles: &[f64]| {
+            angles
+                .iter()
+                .zip(&length)
+                .fold(Point::origin(), |p, (&phi, &l)| {
+                    p + l * geometry::tangent(phi)
+                })
+        };
+        let last = (duration / dt).round() as usize;
+        let mut tips = Vec::with_capacity(last + 3);
+        tips.push(tip(chain.angles()));
+        for _ in 0..last + 2 {
+            chain
+                .step()
+                .map_err(|d| anyhow::anyhow!("graded chain at N = {segments}: {d}"))?;
+            tips.push(tip(chain.angles()));
+        }
+        Ok(Self::new(dt, tips))
     }
 
     /// `method` at `segments` and step `dt` from `scene`, kept at every step to two steps
