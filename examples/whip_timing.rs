@@ -51,10 +51,7 @@ fn main() -> anyhow::Result<()> {
         let scene = Scene::Release { angle_deg };
         let runs: Vec<Trajectory> = levels
             .par_iter()
-            .map(|&n| match grading {
-                1.0 => Trajectory::compute(&scene, n, DURATION),
-                p => Trajectory::compute_graded(&scene, n, DURATION, p),
-            })
+            .map(|&n| Trajectory::compute_graded(&scene, n, DURATION, grading))
             .collect::<anyhow::Result<_>>()?;
         let whips: Vec<(f64, f64)> = runs.iter().map(whip).collect();
         for (i, &n) in levels.iter().enumerate() {

@@ -1,6 +1,7 @@
 //! A run's tip at every one of its steps, to be read at any time: what a study's errors are
 //! measured against at every frame.
 
+use crate::error::Diverged;
 use crate::methods::chain::Chain;
 use crate::methods::{Method, MethodKind};
 use crate::model::Scene;
@@ -50,14 +51,17 @@ impl Trajectory {
     }
 
     /// As [`Trajectory::compute`], on `segments` rods graded towards the free end with
-    /// `exponent` ([`Chain::graded`]), at the equal rods' default step (the substeps follow
-    /// each rod's own wave and spin).
+    /// `exponent` ([`Chain::graded`]; 1: equal rods, [`Trajectory::compute`]), at the equal
+    /// rods' default step (the substeps follow each rod's own wave and spin).
     pub fn compute_graded(
         scene: &Scene,
         segments: usize,
         duration: f64,
         exponent: f64,
     ) -> anyhow::Result<Self> {
+        if exponent == 1.0 {
+            return Self::compute(scene, segments, duration);
+        }
         let dt = MethodKind::Chain.default_dt(segments);
         let mut chain = Chain::graded(scene, segments, dt, exponent)?;
         let length = chain.lengths();
@@ -69,15 +73,9 @@ impl Trajectory {
                     p + l * geometry::tangent(phi)
                 })
         };
-        let last = (duration / dt).round() as usize;
-        let mut tips = Vec::with_capacity(last + 3);
-        tips.push(tip(chain.angles()));
-        for _ in 0..last + 2 {
-            chain
-                .step()
-                .map_err(|d| anyhow::anyhow!("graded chain at N = {segments}: {d}"))?;
-            tips.push(tip(chain.angles()));
-        }
+        let (tips, _) = Self::tips_of(&mut chain, dt, duration, tip, |d| {
+            anyhow::anyhow!("graded chain at N = {segments}: {d}")
+        })?;
         Ok(Self::new(dt, tips))
     }
 
@@ -92,25 +90,41 @@ impl Trajectory {
         duration: f64,
     ) -> anyhow::Result<Kept> {
         let mut run = method.build(scene, segments, dt)?;
+        let (tips, angles) = Self::tips_of(run.as_mut(), dt, duration, geometry::tip, |d| {
+            anyhow::anyhow!(
+                "the run of the {method} method at N = {segments}, k = {dt:e} from the {scene} failed: {d}"
+            )
+        })?;
         let last = (duration / dt).round() as usize;
-        let mut tips = Vec::with_capacity(last + 3);
-        tips.push(geometry::tip(run.angles()));
-        let mut end = None;
-        for step in 1..=last + 2 {
-            if step - 1 == last {
-                end = Some(run.angles().to_vec());
-            }
-            run.step().map_err(|d| {
-                anyhow::anyhow!("the run of the {method} method at N = {segments}, k = {dt:e} from the {scene} failed: {d}")
-            })?;
-            tips.push(geometry::tip(run.angles()));
-        }
-        let angles = end.unwrap_or_else(|| run.angles().to_vec());
         Ok(Kept {
             tip: tips[last],
             angles,
             trajectory: Self { dt, tips },
         })
+    }
+
+    /// `run`'s `tip` at every step of `dt` to two past `duration`, and its angles at the step
+    /// a run to `duration` ends on; a step that fails ends it with `failed`'s error.
+    fn tips_of(
+        run: &mut dyn Method,
+        dt: f64,
+        duration: f64,
+        tip: impl Fn(&[f64]) -> Point,
+        failed: impl Fn(Diverged) -> anyhow::Error,
+    ) -> anyhow::Result<(Vec<Point>, Vec<f64>)> {
+        let last = (duration / dt).round() as usize;
+        let mut tips = Vec::with_capacity(last + 3);
+        tips.push(tip(run.angles()));
+        let mut end = None;
+        for step in 1..=last + 2 {
+            if step - 1 == last {
+                end = Some(run.angles().to_vec());
+            }
+            run.step().map_err(&failed)?;
+            tips.push(tip(run.angles()));
+        }
+        let angles = end.unwrap_or_else(|| run.angles().to_vec());
+        Ok((tips, angles))
     }
 
     /// The step between kept tips.
