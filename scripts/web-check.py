@@ -175,23 +175,25 @@ def scrub(page) -> list:
     live rope go on moving. Returns the failures seen."""
     def picture(clip):
         return hashlib.sha256(page.screenshot(clip=clip, timeout=30_000)).hexdigest()
+    def then_after_click(fraction, before):
+        """Clicks `fraction` along the time bar and waits up to 8 s for the "then" rope to
+        change: a page still catching up may take seconds to draw the cursor's new time
+        (software rendering). Returns the "then" view's picture."""
+        left, right, y = TIME_BAR
+        page.mouse.click(left + fraction * (right - left), y)
+        for _ in range(4):
+            page.wait_for_timeout(2000)
+            after = picture(THEN_VIEW)
+            if after != before:
+                break
+        return after
     failures = []
     try:
         then_before = picture(THEN_VIEW)
-        left, right, y = TIME_BAR
         # Early in the run; where the cursor already was there (the page plays the history
-        # from its start) the kept shape can be the same one, so then half way along. A page
-        # still catching up may take seconds to draw the cursor's new time (software
-        # rendering): each click waits for the change, up to 8 s.
-        then_after, clicked = then_before, None
-        for fraction in (0.1, 0.5):
-            page.mouse.click(left + fraction * (right - left), y)
-            clicked = fraction
-            for _ in range(4):
-                page.wait_for_timeout(2000)
-                then_after = picture(THEN_VIEW)
-                if then_after != then_before:
-                    break
+        # from its start) the kept shape can be the same one, so then half way along.
+        for clicked in (0.1, 0.5):
+            then_after = then_after_click(clicked, then_before)
             if then_after != then_before:
                 break
         live = [picture(LIVE_VIEW)]
