@@ -1,37 +1,78 @@
 //! The release atlas: the worst tip error to t = 3 of the rods (the chain at its tolerance
-//! step) from each release angle 0°, 10°, …, 90° at N = 16 … 566, against the chain
+//! step) from each release angle 0°, 10°, …, 90° at N = 16 … 1131, against the chain
 //! extrapolated from N = 800, 1600 and 3200; and the same at the held-out angles 5°, 15°, …,
 //! 85°, which measure how far an angle between two of the atlas's can stray from them.
 //! `scripts/release-atlas.sh` runs it (about 20 minutes on 2 cores) and writes
 //! `assets/release-atlas/atlas.csv`, which `--tolerance` reads at build time
 //! (`rope::plan::atlas`).
+//!
+//! `release_atlas graded`: the same of the graded rods (`--method graded`) at their tolerance
+//! step, against the graded rods extrapolated from N = 800, 1600 and 3200, from 20° up
+//! ([`GRADED_FROM`]); `scripts/release-atlas.sh graded` writes
+//! `assets/release-atlas/graded-atlas.csv`. `release_atlas graded 30,40`: those angles' rows
+//! alone.
+//!
+//! A reference whose own error one more doubling of N is expected to bring to [`REFINED_TO`]
+//! is made from N = 1600, 3200 and 6400 instead.
 
 use rayon::prelude::*;
 use rope::methods::MethodKind;
 use rope::model::Scene;
-use rope::plan::atlas::{ATLAS_ANGLES, HELD_OUT_ANGLES, SEGMENTS, WINDOW};
+use rope::plan::atlas::{ATLAS_ANGLES, GRADED_FROM, HELD_OUT_ANGLES, SEGMENTS, WINDOW};
 use rope::study::tolerance_check::{TipReference, measure};
 
 /// The reference's N: runs at N/2, N and 2N.
 const REFERENCE_SEGMENTS: usize = 1600;
 
+/// The own error a reference is refined towards, by one doubling of its N (one more run, at
+/// 4N), where that doubling is expected to reach it at the order the reference showed: the
+/// atlas then trusts errors down to ten times it (from 30°, the graded rods near N = 800, at
+/// 1e-4). A reference that one doubling would leave above it is kept as it is.
+const REFINED_TO: f64 = 3e-6;
+
 fn main() -> anyhow::Result<()> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let (method, from) = match args.first().map(String::as_str) {
+        None => (MethodKind::Chain, 0.0),
+        Some("graded") => (MethodKind::Graded, GRADED_FROM),
+        Some(other) => anyhow::bail!("usage: release_atlas [graded [ANGLES]] ({other:?} given)"),
+    };
+    // Only these angles, where given (to remeasure some rows).
+    let only: Option<Vec<f64>> = match args.get(1) {
+        Some(list) => Some(list.split(',').map(str::parse).collect::<Result<_, _>>()?),
+        None => None,
+    };
     let angles: Vec<(&str, f64)> = ATLAS_ANGLES
         .iter()
         .map(|&a| ("atlas", a))
         .chain(HELD_OUT_ANGLES.iter().map(|&a| ("held-out", a)))
+        .filter(|&(_, a)| a >= from)
+        .filter(|(_, a)| only.as_ref().is_none_or(|o| o.contains(a)))
         .collect();
     let rows = angles
         .par_iter()
         .map(|&(set, angle_deg)| {
             let scene = Scene::Release { angle_deg };
-            let reference = TipReference::compute(&scene, REFERENCE_SEGMENTS, WINDOW)?;
-            let chain = MethodKind::Chain;
+            let mut reference =
+                TipReference::compute_by(method, &scene, REFERENCE_SEGMENTS, WINDOW)?;
+            eprintln!(
+                "{set} {angle_deg}°: reference own error {:.1e}",
+                reference.own_error
+            );
+            let doubled = reference.own_error / 2f64.powf(reference.order);
+            if reference.own_error > REFINED_TO && doubled <= REFINED_TO {
+                reference =
+                    TipReference::compute_by(method, &scene, 2 * REFERENCE_SEGMENTS, WINDOW)?;
+                eprintln!(
+                    "{set} {angle_deg}°: refined to N = {}: own error {:.1e}",
+                    reference.segments, reference.own_error
+                );
+            }
             let lines: Vec<String> = SEGMENTS
                 .iter()
                 .map(|&n| {
-                    let dt = chain.tolerance_dt(n);
-                    let worst = measure(chain, &scene, n, dt, WINDOW, false, &reference)
+                    let dt = method.tolerance_dt(n);
+                    let worst = measure(method, &scene, n, dt, WINDOW, false, &reference)
                         .map_or(f64::NAN, |m| m.worst);
                     format!(
                         "{set},{angle_deg},{n},{worst:.4e},{},{:.2e}",
@@ -39,10 +80,6 @@ fn main() -> anyhow::Result<()> {
                     )
                 })
                 .collect();
-            eprintln!(
-                "{set} {angle_deg}°: reference own error {:.1e}",
-                reference.own_error
-            );
             Ok(lines)
         })
         .collect::<anyhow::Result<Vec<_>>>()?;

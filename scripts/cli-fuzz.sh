@@ -56,7 +56,7 @@ study_args() {
         add --segments "16,16" 0 -4 1 x "" 100000000; fi
     if ((RANDOM % 4)); then add --dts 1e-3 3e-2 1e-2 "1e-3,3e-3" 0.3 1; else
         add --dts "1e-3,1e-3" 0 -1e-3 nan inf x "" 1e-300; fi
-    ((RANDOM % 2)) && add --methods seed chain rattle midpoint "seed,chain" "seed,seed" x ""
+    ((RANDOM % 2)) && add --methods seed chain graded rattle midpoint "seed,chain" "chain,graded" "seed,seed" x ""
     ((RANDOM % 2)) && add --duration 0.1 0.3 1 0.1 0.3 1 0 -1 nan inf 1e300 x
     ((RANDOM % 3 == 0)) && add --reference-segments 4 8 16 64 64 7 0 -2 x
     ((RANDOM % 3 == 0)) && add --angle 0 1 30 90 30 60 91 -5 nan x
@@ -112,7 +112,7 @@ for ((r = 1; r <= runs; r++)); do
         ((RANDOM % 2)) && add --dt "${steps[@]}"
     fi
     ((RANDOM % 2)) && add --segments "${counts[@]}"
-    ((RANDOM % 3 == 0)) && add --method seed chain rattle midpoint "" "seed,chain" "chain,chain"
+    ((RANDOM % 3 == 0)) && add --method seed chain graded rattle midpoint "" "seed,chain" "chain,chain"
     # Each scene with its own flags, mostly (a flag of the other scene is refused by name).
     if ((RANDOM % 4 == 0)); then
         args+=(--scene mode)

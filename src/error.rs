@@ -126,7 +126,7 @@ pub enum ConfigError {
     )]
     SeedShake,
     #[error(
-        "scene = {0}: graded rods are measured on releases only (a release is straight, so every rod starts at its angle whatever its length); start them from a release"
+        "scene = {0}: the graded method starts from a release only (a release is straight, so every rod starts at its angle whatever its length); use --method chain, rattle or midpoint for the {0} scene, or start the graded rods from a release (--scene release --angle …)"
     )]
     GradedScene(&'static str),
     #[error("{flag}: a study is of one scene, {count} given; run one study per scene")]

@@ -341,3 +341,20 @@ fn a_shake_of_no_negative_or_too_large_amplitude_or_frequency() {
     .unwrap_err();
     assert_eq!(err, ConfigError::SeedShake);
 }
+
+#[test]
+fn graded_rods_refuse_every_scene_but_a_release_saying_what_works() {
+    let mode = Scene::Mode {
+        number: 1,
+        amplitude: 0.05,
+    };
+    for scene in [mode, Scene::Fold { gap: 0.04 }] {
+        let err = config(MethodKind::Graded, scene, 100, None).unwrap_err();
+        let text = err.to_string();
+        assert!(
+            text.contains("graded") && text.contains("release") && text.contains("--method chain"),
+            "{text}"
+        );
+    }
+    assert!(config(MethodKind::Graded, THIRTY, 100, None).is_ok());
+}

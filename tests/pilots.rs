@@ -27,11 +27,15 @@ fn worst_tip_error(samples: &serde_json::Value, reference: impl Fn(f64) -> Point
         .fold(0.0, f64::max)
 }
 
-/// Runs `rope run` with `--tolerance` and returns the summary and what it said.
+/// Runs `rope run` with `--tolerance` (to t = 3 unless `flags` give a `--duration`) and returns
+/// the summary and what it said.
 fn tolerance_run(name: &str, flags: &[&str]) -> (serde_json::Value, String) {
     let dir = Scratch::new(name);
     let (rrd, json) = (dir.path("t.rrd"), dir.path("t.json"));
-    let mut args = vec!["run", "--duration", "3"];
+    let mut args = vec!["run"];
+    if !flags.contains(&"--duration") {
+        args.extend_from_slice(&["--duration", "3"]);
+    }
     args.extend_from_slice(flags);
     args.extend_from_slice(&[
         "--save",
@@ -380,4 +384,75 @@ fn past_the_committed_window_the_pilots_measured_figure_rules() {
     // The test is of a run past the window; were the window to grow past 5, it would test
     // nothing.
     const { assert!(5.0 > tolerance::COMMITTED_UNTIL) };
+}
+
+#[test]
+fn from_30_degrees_at_1e_4_the_graded_rods_are_chosen_from_their_atlas_for_a_fraction_of_the_chain()
+{
+    // The chain's atlas does not reach 1e-4 (its references err by 2e-5 and more), so the
+    // chain falls back on its one law, fitted to the horizontal release's whip: thousands of
+    // rods. The graded rods resolve the whip, and their atlas, against graded references that
+    // err by a few 1e-6 from 20° to 30°, reaches 1e-4 there.
+    let thirty = Scene::Release { angle_deg: 30.0 };
+    let (choice, pilots) = pilot::choose(1e-4, &thirty, 3.0, 60.0, u64::MAX).unwrap();
+    assert_eq!(choice.method, MethodKind::Graded, "{choice:?}");
+    assert_eq!(pilots.basis, pilot::Basis::Atlas);
+    let law = MethodKind::Chain.descriptor().error_model;
+    let by_law = tolerance::by_model(MethodKind::Chain, &law, 1e-4, 16, 3.0);
+    assert!(
+        choice.predicted_seconds < 0.25 * by_law.predicted_seconds,
+        "{choice:?} against the chain's law: {by_law:?}"
+    );
+    // Not from the horizontal, whose graded end rods spin on after the whip: no atlas there.
+    let horizontal = Scene::Release { angle_deg: 0.0 };
+    assert!(tolerance::from_atlas(MethodKind::Graded, &horizontal, 3.0, 1e-2).is_none());
+}
+
+/// The release from 30° against the graded rods at N = 800, 1600, 3200, extrapolated: its
+/// own error a few 1e-6. `cargo test --release --test pilots -- --ignored --nocapture`
+/// (about five minutes of CPU).
+#[test]
+#[ignore]
+fn a_release_from_30_degrees_holds_1e_4_against_the_graded_reference_at_every_frame() {
+    let thirty = Scene::Release { angle_deg: 30.0 };
+    let reference = TipReference::compute_by(MethodKind::Graded, &thirty, 1600, 3.0).unwrap();
+    eprintln!(
+        "graded reference from 30° at N = 800, 1600, 3200: order {:.2}, own error {:.1e}",
+        reference.order, reference.own_error
+    );
+    assert!(
+        reference.own_error <= 1e-5,
+        "own error {:.1e}",
+        reference.own_error
+    );
+    thirty_degrees_holds("1e-4", &reference);
+}
+
+/// `rope run --angle 45 --tolerance 1e-3 --duration 5`, past the atlases' t = 3 (the pilots'
+/// model rules), against the graded rods at N = 800, 1600, 3200 to t = 5, extrapolated.
+/// `cargo test --release --test pilots -- --ignored a_release_from_45_degrees --nocapture`
+/// (about five minutes of CPU).
+#[test]
+#[ignore]
+fn a_release_from_45_degrees_over_5_units_holds_1e_3_against_the_graded_reference() {
+    let scene = Scene::Release { angle_deg: 45.0 };
+    let reference = TipReference::compute_by(MethodKind::Graded, &scene, 1600, 5.0).unwrap();
+    eprintln!(
+        "graded reference from 45° to t = 5 at N = 800, 1600, 3200: order {:.2}, own error {:.1e}",
+        reference.order, reference.own_error
+    );
+    assert!(
+        reference.own_error <= 1e-4,
+        "own error {:.1e}",
+        reference.own_error
+    );
+    let flags = ["--angle", "45", "--tolerance", "1e-3", "--duration", "5"];
+    let (s, _) = tolerance_run("pilot-45-5", &flags);
+    let worst = worst_tip_error(&s["tip_samples"], |t| reference.at(t));
+    let (method, segments) = (&s["method"], &s["segments"]);
+    eprintln!("45° to t = 5, 1e-3: {method} at N = {segments}, worst tip error {worst:.2e}");
+    assert!(
+        worst <= 1e-3,
+        "worst tip error {worst:.2e} with {method} at N = {segments}"
+    );
 }

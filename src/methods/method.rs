@@ -87,6 +87,11 @@ pub trait Method: Send {
     fn support_tension(&self) -> f64;
     /// The segment angles φ_i now, support … tip: the shape, without solving for anything.
     fn angles(&self) -> &[f64];
+    /// The rods' lengths, support … tip, where they are not all 1/N (graded rods, summing to
+    /// 1); `None` for N equal segments.
+    fn lengths(&self) -> Option<&[f64]> {
+        None
+    }
     /// The largest joint gap |g_j| after the latest step, for a method whose rods are held
     /// together by constraints it solves for (it must stay at round-off); `None` for a
     /// method whose string cannot come apart by construction.
@@ -236,6 +241,9 @@ pub struct Descriptor {
     /// Whether the method keeps the energy exactly (to round-off), whatever the step: the
     /// one to suggest when another strays.
     pub keeps_energy: bool,
+    /// Whether the method suits a run left going for long at a steady cost per time unit:
+    /// the one to suggest for a long run (with no blow-up of its own, [`Descriptor::blow_up`]).
+    pub steady_cost: bool,
     /// For a method that blows up in a long run at any step: when it did, from the release
     /// at 30°, in every run of `rope study --blow-up 200` (`assets/blow-up/`), by N. Empty
     /// for a method that stays stable for ever.
@@ -277,6 +285,10 @@ pub struct Descriptor {
     pub colours: ([u8; 3], [u8; 3]),
     /// Builds the method at rest in a scene, validating what it needs.
     pub build: Builder,
+    /// Whether `--tolerance` may choose the method for a scene it can start from: where its
+    /// cost is what [`Descriptor::ns_per_segment_step`] predicts (every scene but for the
+    /// graded rods, whose end rods spin on near the horizontal).
+    pub plannable: fn(&Scene) -> bool,
 }
 
 /// When a method blew up at one N, over the steps of the blow-up map.
@@ -377,5 +389,15 @@ mod tests {
         // The chain at N = 491: the limit 6.65e-4, the step 1/1560.
         let chain = MethodKind::Chain.descriptor();
         assert!((chain.tolerance_dt(491) - 1.0 / 1560.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_study_compares_every_method_of_a_steady_cost_unless_told() {
+        let steady: Vec<MethodKind> = MethodKind::ALL
+            .into_iter()
+            .filter(|m| m.descriptor().steady_cost)
+            .collect();
+        assert_eq!(steady, MethodKind::STUDIED);
+        assert!(!MethodKind::STUDIED.contains(&MethodKind::Graded));
     }
 }

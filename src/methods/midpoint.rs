@@ -83,6 +83,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     limit_meaning: "steps shrink past about k = C h / sqrt(F_max)",
     past_limit: "its own steps shrink until the fastest rod turns at most 0.05 rad in one, so it stays stable at any --dt: the limit only sets the default step",
     keeps_energy: true,
+    steady_cost: true,
     blow_up: &[],
     // Two fifths of the limit (1e-3 at N = 100): a pair of steps of 5e-4, `rattle`'s step.
     default_step_fraction: 0.4,
@@ -107,6 +108,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     },
     colours: ([200, 170, 240], [90, 40, 160]),
     build: |scene, segments, dt| Ok(Box::new(Midpoint::new(scene, segments, dt)?)),
+    plannable: |_| true,
 };
 
 /// sin x, cos x, sinc x = sin x / x and its derivative, by series where |x| is small (their

@@ -4,6 +4,7 @@
 //! * [`method`]: what every method is: the [`Method`] trait and its [`Descriptor`];
 //! * [`seed`]: the report's finite-difference scheme, first order in h;
 //! * [`chain`]: a chain of rigid rods with RK4, second order in h;
+//! * [`graded`]: the chain's method on rods graded towards the free end, which resolve the whip;
 //! * [`rattle`]: the same chain in maximal coordinates with RATTLE: symplectic, bounded energy;
 //! * [`midpoint`]: the same chain and coordinates with an energy–momentum midpoint rule: the
 //!   energy kept exactly whatever the steps, which follow the motion;
@@ -21,6 +22,7 @@
 pub mod chain;
 pub(crate) mod constraint_matrix;
 pub mod error_model;
+pub mod graded;
 pub(crate) mod joint_forces;
 pub mod method;
 pub mod midpoint;

@@ -69,6 +69,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     limit_meaning: "steps split past about k = C h / sqrt(F_max)",
     past_limit: "past about it each step is split into substeps, so rattle stays stable and only costs more: the limit is where the splitting starts, not where rattle fails",
     keeps_energy: false,
+    steady_cost: true,
     blow_up: &[],
     // A fifth of the limit (5e-4 at N = 100): the energy error of the 30° release stays near
     // 2e-6 over 100 time units there, against 1.2e-5 at 1e-3.
@@ -92,6 +93,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     },
     colours: ([140, 220, 140], [10, 110, 40]),
     build: |scene, segments, dt| Ok(Box::new(Rattle::new(scene, segments, dt)?)),
+    plannable: |_| true,
 };
 
 /// A configuration and its momenta.

@@ -22,6 +22,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     limit_meaning: "estimate k = C h / sqrt(F_max)",
     past_limit: "the scheme blows up past it, so a step past it is refused unless --allow-unstable asks to watch it fail",
     keeps_energy: false,
+    steady_cost: true,
     // `rope study --blow-up 200 --out assets/blow-up`: every run diverged before t = 200.
     blow_up: &[
         BlowUp {
@@ -69,6 +70,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     },
     colours: ([250, 170, 60], [150, 30, 0]),
     build: |scene, segments, dt| Ok(Box::new(Seed::new(scene, segments, dt)?)),
+    plannable: |_| true,
 };
 
 /// Which sign the support condition (11) is used with.

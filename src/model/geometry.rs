@@ -36,14 +36,65 @@ pub fn turned(tangent: Vector2<f64>, delta: f64) -> Vector2<f64> {
 
 /// Node positions, support … tip: N + 1 points (eqs. 14–15 at the segment ends).
 pub fn nodes(angles: &[f64], out: &mut Vec<Point>) {
-    let h = 1.0 / angles.len() as f64;
+    nodes_of(angles, None, out);
+}
+
+/// The rods' lengths: each its own where `lengths` gives them (graded rods), else 1/N.
+#[inline]
+fn length_of(lengths: Option<&[f64]>, segments: usize) -> impl Fn(usize) -> f64 + '_ {
+    let h = 1.0 / segments as f64;
+    move |i| lengths.map_or(h, |l| l[i])
+}
+
+/// As [`nodes`], for rods of the lengths `lengths` where they are given (graded rods), of
+/// length 1/N each where not.
+pub fn nodes_of(angles: &[f64], lengths: Option<&[f64]>, out: &mut Vec<Point>) {
+    let h = length_of(lengths, angles.len());
     out.clear();
     let mut p = Point::origin();
     out.push(p);
-    for &phi in angles {
-        p += h * tangent(phi);
+    for (i, &phi) in angles.iter().enumerate() {
+        p += h(i) * tangent(phi);
         out.push(p);
     }
+}
+
+/// Where rods of `lengths` start along the string, s = 0 at the support, and the tip's 1 last
+/// (N + 1 values); i/N for equal rods (`None`).
+pub fn edges(segments: usize, lengths: Option<&[f64]>, out: &mut Vec<f64>) {
+    out.clear();
+    match lengths {
+        None => out.extend((0..=segments).map(|i| i as f64 / segments.max(1) as f64)),
+        Some(length) => {
+            let mut s = 0.0;
+            out.push(s);
+            for &l in length {
+                s += l;
+                out.push(s);
+            }
+        }
+    }
+}
+
+/// The point at arc length `s` along the string whose nodes `nodes` sit at arc lengths
+/// `edges` (support … tip, both increasing), from node `from` on: the node before `s` and
+/// the point, so that a walk along increasing `s` starts where the last one stopped.
+pub fn walk_to(nodes: &[Point], edges: &[f64], from: usize, s: f64) -> (usize, Point) {
+    let segments = nodes.len().saturating_sub(1);
+    if segments == 0 {
+        return (0, nodes.first().copied().unwrap_or_else(Point::origin));
+    }
+    let mut i = from.min(segments - 1);
+    while i + 1 < segments && edges[i + 1] <= s {
+        i += 1;
+    }
+    let span = edges[i + 1] - edges[i];
+    let frac = if span > 0.0 {
+        (s - edges[i]) / span
+    } else {
+        0.0
+    };
+    (i, nodes[i] + frac * (nodes[i + 1] - nodes[i]))
 }
 
 /// Segment centres (eqs. 14–15): x_i = Σ_{m<i} h cos φ_m + (h/2) cos φ_i, y likewise.
@@ -83,12 +134,84 @@ pub fn largest_distance(a: &[Point], b: &[Point]) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// As [`largest_distance`], for strings whose nodes sit at arc lengths `a_edges` and
+/// `b_edges` (`None`: equal segments, [`edges`]): at arc lengths evenly spread over as many
+/// points as the finer has nodes.
+pub fn largest_distance_of(
+    a: &[Point],
+    a_edges: Option<&[f64]>,
+    b: &[Point],
+    b_edges: Option<&[f64]>,
+) -> f64 {
+    if a_edges.is_none() && b_edges.is_none() {
+        return largest_distance(a, b);
+    }
+    let points = a.len().max(b.len()).max(2);
+    let (mut on_a, mut on_b) = (Along::new(a, a_edges), Along::new(b, b_edges));
+    (0..points)
+        .map(|j| {
+            let s = j as f64 / (points - 1) as f64;
+            (on_a.at(s) - on_b.at(s)).norm()
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The largest distance between the nodes of string `a`, at arc lengths `a_edges`, and the
+/// points of string `b` at the same arc lengths (`b`'s nodes at `b_edges`; `None`: equal
+/// segments).
+pub fn largest_distance_at(
+    a: &[Point],
+    a_edges: &[f64],
+    b: &[Point],
+    b_edges: Option<&[f64]>,
+) -> f64 {
+    let mut on_b = Along::new(b, b_edges);
+    a.iter()
+        .zip(a_edges)
+        .map(|(p, &s)| (on_b.at(s) - p).norm())
+        .fold(0.0, f64::max)
+}
+
+/// A walk along a string by increasing arc length: its nodes, where they sit (`None`: equal
+/// segments) and the segment the walk has reached.
+struct Along<'a> {
+    nodes: &'a [Point],
+    edges: Option<&'a [f64]>,
+    segment: usize,
+}
+
+impl<'a> Along<'a> {
+    fn new(nodes: &'a [Point], edges: Option<&'a [f64]>) -> Self {
+        Self {
+            nodes,
+            edges,
+            segment: 0,
+        }
+    }
+
+    /// The point at arc length `s`, at or past the last one asked for.
+    fn at(&mut self, s: f64) -> Point {
+        let Some(edges) = self.edges else {
+            return at_arc_length(self.nodes, s);
+        };
+        let (segment, point) = walk_to(self.nodes, edges, self.segment, s);
+        self.segment = segment;
+        point
+    }
+}
+
 /// The tip (free end) position.
 pub fn tip(angles: &[f64]) -> Point {
-    let h = 1.0 / angles.len() as f64;
+    tip_of(angles, None)
+}
+
+/// As [`tip`], for rods of `lengths` where they are given.
+pub fn tip_of(angles: &[f64], lengths: Option<&[f64]>) -> Point {
+    let h = length_of(lengths, angles.len());
     angles
         .iter()
-        .fold(Point::origin(), |p, &phi| p + h * tangent(phi))
+        .enumerate()
+        .fold(Point::origin(), |p, (i, &phi)| p + h(i) * tangent(phi))
 }
 
 /// Energy of the chain of rods (eq. 13 summed, eq. 16), in units of m g L.
@@ -154,13 +277,23 @@ pub fn energy(angles: &[f64], angular_velocity: &[f64]) -> Energy {
 
 /// Tip velocity Σ h φ̇_i n_i.
 pub fn tip_velocity(angles: &[f64], angular_velocity: &[f64]) -> Vector2<f64> {
-    let h = 1.0 / angles.len() as f64;
+    tip_velocity_of(angles, angular_velocity, None)
+}
+
+/// As [`tip_velocity`], for rods of `lengths` where they are given.
+pub fn tip_velocity_of(
+    angles: &[f64],
+    angular_velocity: &[f64],
+    lengths: Option<&[f64]>,
+) -> Vector2<f64> {
+    let h = length_of(lengths, angles.len());
     angles
         .iter()
         .zip(angular_velocity)
-        .fold(Vector2::zeros(), |v, (&phi, &w)| {
+        .enumerate()
+        .fold(Vector2::zeros(), |v, (i, (&phi, &w))| {
             let (s, c) = phi.sin_cos();
-            v + h * w * Vector2::new(-s, c)
+            v + h(i) * w * Vector2::new(-s, c)
         })
 }
 
@@ -177,6 +310,27 @@ pub fn momentum(angles: &[f64], angular_velocity: &[f64]) -> Vector2<f64> {
             let beyond = 1.0 - (j as f64 + 0.5) * h;
             p + h * w * beyond * Vector2::new(-s, c)
         })
+}
+
+/// As [`momentum`], for rods of `lengths` (mass equal to length) where they are given: rod j
+/// of length l_j, its centre at s_j = Σ_{m<j} l_m + l_j / 2.
+pub fn momentum_of(
+    angles: &[f64],
+    angular_velocity: &[f64],
+    lengths: Option<&[f64]>,
+) -> Vector2<f64> {
+    let Some(length) = lengths else {
+        return momentum(angles, angular_velocity);
+    };
+    let mut start = 0.0;
+    let mut p = Vector2::zeros();
+    for ((&phi, &w), &l) in angles.iter().zip(angular_velocity).zip(length) {
+        let (s, c) = phi.sin_cos();
+        let beyond = 1.0 - (start + 0.5 * l);
+        p += l * w * beyond * Vector2::new(-s, c);
+        start += l;
+    }
+    p
 }
 
 /// The string's first moment Σ m_i c_i (mass 1) over the rods' centres, = Σ h t_j (1 − s_j),
@@ -217,15 +371,26 @@ pub fn tip_acceleration(
     angular_velocity: &[f64],
     angular_acceleration: &[f64],
 ) -> Vector2<f64> {
-    let h = 1.0 / angles.len() as f64;
+    tip_acceleration_of(angles, angular_velocity, angular_acceleration, None)
+}
+
+/// As [`tip_acceleration`], for rods of `lengths` where they are given.
+pub fn tip_acceleration_of(
+    angles: &[f64],
+    angular_velocity: &[f64],
+    angular_acceleration: &[f64],
+    lengths: Option<&[f64]>,
+) -> Vector2<f64> {
+    let h = length_of(lengths, angles.len());
     let mut a = Vector2::zeros();
-    for ((&phi, &w), &alpha) in angles
+    for (i, ((&phi, &w), &alpha)) in angles
         .iter()
         .zip(angular_velocity)
         .zip(angular_acceleration)
+        .enumerate()
     {
         let (s, c) = phi.sin_cos();
-        a += h * (alpha * Vector2::new(-s, c) - w * w * Vector2::new(c, s));
+        a += h(i) * (alpha * Vector2::new(-s, c) - w * w * Vector2::new(c, s));
     }
     a
 }
@@ -278,6 +443,45 @@ mod tests {
         let tip_gap = (0.5f64 * 0.5 + 0.5 * 0.5).sqrt();
         assert!((largest_distance(&straight, &bent) - tip_gap).abs() < 1e-15);
         assert_eq!(largest_distance(&straight, &straight), 0.0);
+    }
+
+    #[test]
+    fn rods_of_their_own_lengths_are_compared_at_equal_arc_length() {
+        use std::f64::consts::FRAC_PI_2;
+        // The same string bent at a right angle at s = 1/2, as 4 equal rods and as 4 rods of
+        // lengths 0.1, 0.4, 0.3, 0.2.
+        let equal_angles = [0.0, 0.0, FRAC_PI_2, FRAC_PI_2];
+        let lengths = [0.1, 0.4, 0.3, 0.2];
+        let graded_angles = [0.0, 0.0, FRAC_PI_2, FRAC_PI_2];
+        let (mut a, mut b, mut edges) = (Vec::new(), Vec::new(), Vec::new());
+        nodes(&equal_angles, &mut a);
+        nodes_of(&graded_angles, Some(&lengths), &mut b);
+        edges_of_check(&lengths, &mut edges);
+        assert!(largest_distance_of(&a, None, &b, Some(&edges)) < 1e-15);
+        assert!(largest_distance_at(&b, &edges, &a, None) < 1e-15);
+        assert!((tip_of(&graded_angles, Some(&lengths)) - Point::new(0.5, 0.5)).norm() < 1e-15);
+        // Moved apart at the tip by 0.1: the largest distance says so.
+        let bent = [0.0, 0.0, FRAC_PI_2, 0.0];
+        nodes_of(&bent, Some(&lengths), &mut b);
+        let apart = largest_distance_of(&a, None, &b, Some(&edges));
+        assert!(
+            (apart - (0.2f64.powi(2) * 2.0).sqrt()).abs() < 1e-12,
+            "{apart}"
+        );
+        // The momentum of rods of all but equal lengths is the equal rods' own.
+        let (phi, omega) = ([0.3, -0.2, 1.1, 0.7], [1.0, -2.0, 0.5, 3.0]);
+        let quarter = [0.25; 4];
+        let (m, m_of) = (
+            momentum(&phi, &omega),
+            momentum_of(&phi, &omega, Some(&quarter)),
+        );
+        assert!((m - m_of).norm() < 1e-15, "{m:?} {m_of:?}");
+    }
+
+    /// [`edges`] of rods of `lengths`, checked to end at 1.
+    fn edges_of_check(lengths: &[f64], out: &mut Vec<f64>) {
+        edges(lengths.len(), Some(lengths), out);
+        assert!((out[lengths.len()] - 1.0).abs() < 1e-15);
     }
 
     #[test]

@@ -18,6 +18,7 @@
 //! atlas serves only what it measured: the rods, a release, runs to t ≤ 3, N ≤ 566, and
 //! errors at least ten times its references' own; elsewhere the method's one law stands.
 
+use crate::methods::MethodKind;
 use crate::methods::error_model::ErrorModel;
 use crate::model::Scene;
 use std::sync::OnceLock;
@@ -28,8 +29,13 @@ pub const ATLAS_ANGLES: [f64; 10] = [0.0, 10.0, 20.0, 30.0, 40.0, 50.0, 60.0, 70
 /// The angles measured only to find the margin for angles between the atlas's.
 pub const HELD_OUT_ANGLES: [f64; 9] = [5.0, 15.0, 25.0, 35.0, 45.0, 55.0, 65.0, 75.0, 85.0];
 
-/// The segment counts measured at each angle (√2 apart from 50 up).
-pub const SEGMENTS: [usize; 11] = [16, 25, 32, 50, 64, 100, 141, 200, 283, 400, 566];
+/// The segment counts measured at each angle (√2 apart from 50 up). The chain's atlas was
+/// measured to 566, the graded rods' to 1131.
+pub const SEGMENTS: [usize; 13] = [16, 25, 32, 50, 64, 100, 141, 200, 283, 400, 566, 800, 1131];
+
+/// The graded rods' atlas starts at this release angle, where `--tolerance` may choose
+/// them ([`crate::methods::graded::SPIN_FREE_FROM`]).
+pub const GRADED_FROM: f64 = crate::methods::graded::SPIN_FREE_FROM;
 
 /// The simulated time over which the worst error is measured: the atlas serves runs no longer.
 pub const WINDOW: f64 = 3.0;
@@ -39,6 +45,9 @@ pub const REFERENCE_MARGIN: f64 = 0.1;
 
 /// The measurements, as `scripts/release-atlas.sh` wrote them.
 const CSV: &str = include_str!("../../assets/release-atlas/atlas.csv");
+
+/// The graded rods' measurements, as `scripts/release-atlas.sh graded` wrote them.
+const GRADED_CSV: &str = include_str!("../../assets/release-atlas/graded-atlas.csv");
 
 /// One angle's worst errors.
 #[derive(Clone, Debug, PartialEq)]
@@ -73,6 +82,26 @@ impl Atlas {
     pub fn committed() -> Option<&'static Atlas> {
         static ATLAS: OnceLock<Option<Atlas>> = OnceLock::new();
         ATLAS.get_or_init(|| Atlas::parse(CSV).ok()).as_ref()
+    }
+
+    /// The committed atlas of the graded rods (`assets/release-atlas/graded-atlas.csv`), read
+    /// once; `None` if absent or malformed.
+    pub fn committed_graded() -> Option<&'static Atlas> {
+        static ATLAS: OnceLock<Option<Atlas>> = OnceLock::new();
+        ATLAS.get_or_init(|| Atlas::parse(GRADED_CSV).ok()).as_ref()
+    }
+
+    /// The committed atlas of the discretization `method` runs on: the chain's rods, or the
+    /// graded rods; `None` for another (the report's finite differences).
+    pub fn of(method: MethodKind) -> Option<&'static Atlas> {
+        let discretization = method.descriptor().discretization;
+        if discretization == MethodKind::Chain.descriptor().discretization {
+            Self::committed()
+        } else if discretization == MethodKind::Graded.descriptor().discretization {
+            Self::committed_graded()
+        } else {
+            None
+        }
     }
 
     /// Reads the CSV `scripts/release-atlas.sh` writes: a header, then
@@ -257,6 +286,24 @@ mod tests {
             "{}",
             atlas.margin
         );
+    }
+
+    #[test]
+    fn the_committed_graded_atlas_reads_from_20_degrees_and_the_law_bounds_it() {
+        let atlas = Atlas::parse(GRADED_CSV).expect("the committed graded atlas reads");
+        assert!(atlas.rows.iter().all(|r| r.angle_deg >= GRADED_FROM));
+        assert!(
+            atlas.margin >= 1.0 && atlas.margin < 2.0,
+            "{}",
+            atlas.margin
+        );
+        // The graded rods borrow the chain's one law: it bounds every trusted entry.
+        let law = MethodKind::Graded.descriptor().error_model;
+        for (angle, points) in atlas.rows() {
+            for (n, error) in points {
+                assert!(error <= law.bound(n), "{angle}° at N = {n}: {error:e}");
+            }
+        }
     }
 
     #[test]

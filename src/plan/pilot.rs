@@ -140,9 +140,9 @@ pub enum Basis {
     CommittedTighter,
     /// The committed model alone: no pilot was worth its cost, or none measured anything.
     Committed,
-    /// The committed model, from the release atlas ([`tolerance::from_atlas`]): the rods'
-    /// error measured from this angle's neighbours up to large N, alone or tighter than the
-    /// pilots' own.
+    /// The committed model, from the release atlas of the chosen rods
+    /// ([`tolerance::from_atlas`]): their error measured from this angle's neighbours up to
+    /// large N, alone or tighter than the pilots' own.
     Atlas,
 }
 
@@ -157,7 +157,7 @@ impl Basis {
                 "the committed error model, here tighter than the pilots' own (measured at N ≤ 64)"
             }
             Self::Atlas => {
-                "the release atlas: the rods' worst error to t = 3 measured up to N = 566 from this angle's neighbours among 0°, 10°, …, 90°, times the margin the angles between them showed (`scripts/release-atlas.sh`)"
+                "the release atlas of the chosen rods: their worst error to t = 3 measured from this angle's neighbours 10° apart (the chain's rods from 0° up to N = 566, the graded rods from 20° up to N = 1131), times the margin the angles between them showed (`scripts/release-atlas.sh`)"
             }
             Self::Committed => {
                 "the committed error model, fitted to t = 3 over six scenes by `rope study --estimate-check`, no cheaper run found by the pilots that were worth their cost"

@@ -113,19 +113,16 @@ impl Committed {
 pub const COMMITTED_UNTIL: f64 = super::atlas::WINDOW;
 
 /// The release atlas's error model for `method` from `scene` to `duration` at `tolerance`:
-/// `None` unless the method is of the rods the atlas measured (the chain's discretization),
-/// the scene a release, the run within the atlas's window and the tolerance within its N.
+/// `None` unless the method is of rods an atlas measured (the chain's, or the graded rods:
+/// [`Atlas::of`]), the scene a release, the run within the atlas's window and the tolerance
+/// within its N.
 pub fn from_atlas(
     method: MethodKind,
     scene: &Scene,
     duration: f64,
     tolerance: f64,
 ) -> Option<ErrorModel> {
-    let measured = MethodKind::REFERENCE.descriptor().discretization;
-    if method.descriptor().discretization != measured {
-        return None;
-    }
-    Atlas::committed()?.model(scene, duration, tolerance)
+    Atlas::of(method)?.model(scene, duration, tolerance)
 }
 
 /// As [`choose`], with each method's error model given by `model_of` (the scene's own, from
@@ -185,11 +182,12 @@ pub fn tightest(
         .min_by(|a, b| a.predicted_error.total_cmp(&b.predicted_error))
 }
 
-/// The methods that can start from `scene`.
+/// The methods that can start from `scene` and that the rule may choose there
+/// ([`Descriptor::plannable`](crate::methods::Descriptor::plannable)).
 pub fn startable(scene: &Scene) -> impl Iterator<Item = MethodKind> + '_ {
     MethodKind::ALL
         .into_iter()
-        .filter(move |&method| can_start(method, scene))
+        .filter(move |&method| (method.descriptor().plannable)(scene) && can_start(method, scene))
 }
 
 /// Whether `method` can start from `scene` (independent of N: asked at its fewest segments,

@@ -205,6 +205,7 @@ fn sample_frame(plan: &RunPlan, step: u64, time: f64, lane: Option<usize>) -> Fr
         step,
         time,
         nodes,
+        edges: None,
         tension,
         tension_first_at: 0.5,
         energy: Energy {

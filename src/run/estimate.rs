@@ -34,6 +34,8 @@ pub struct Shadow {
     /// Why the shadow stopped, if it did: the estimates end there.
     lost: Option<Diverged>,
     nodes: Vec<Point>,
+    /// The shadow's nodes' arc lengths, for rods of unequal lengths.
+    edges: Vec<f64>,
 }
 
 impl Shadow {
@@ -69,6 +71,7 @@ impl Shadow {
             richardson: 1.0 / (ratio.powi(order as i32) - 1.0),
             lost: None,
             nodes: Vec::with_capacity(half + 1),
+            edges: Vec::new(),
         }))
     }
 
@@ -78,9 +81,15 @@ impl Shadow {
     }
 
     /// Brings the shadow to the run's step `step` and estimates the error of the run's
-    /// `nodes` (support … tip). `None` if `step` is not a multiple of [`STRIDE`] (the two are
-    /// not at the same instant) or the shadow has stopped.
-    pub fn estimate(&mut self, step: u64, nodes: &[Point]) -> Option<ErrorEstimate> {
+    /// `nodes` (support … tip; at arc lengths `edges`, `None` for equal segments). `None` if
+    /// `step` is not a multiple of [`STRIDE`] (the two are not at the same instant) or the
+    /// shadow has stopped.
+    pub fn estimate(
+        &mut self,
+        step: u64,
+        nodes: &[Point],
+        edges: Option<&[f64]>,
+    ) -> Option<ErrorEstimate> {
         if self.lost.is_some() || !step.is_multiple_of(STRIDE) {
             return None;
         }
@@ -103,18 +112,26 @@ impl Shadow {
             });
             return None;
         }
-        geometry::nodes(self.method.angles(), &mut self.nodes);
+        let lengths = self.method.lengths();
+        geometry::nodes_of(self.method.angles(), lengths, &mut self.nodes);
         // In the room, as the run's nodes are.
         crate::model::support::into_the_room(self.method.support(), &mut self.nodes);
         let tip = nodes.last().copied().unwrap_or_else(Point::origin);
         let shadow_tip = self.nodes.last().copied().unwrap_or_else(Point::origin);
-        let half = self.nodes.len().saturating_sub(1).max(1) as f64;
-        let shape = self
-            .nodes
-            .iter()
-            .enumerate()
-            .map(|(j, p)| (geometry::at_arc_length(nodes, j as f64 / half) - p).norm())
-            .fold(0.0, f64::max);
+        let shape = match (edges, lengths) {
+            (None, None) => {
+                let half = self.nodes.len().saturating_sub(1).max(1) as f64;
+                self.nodes
+                    .iter()
+                    .enumerate()
+                    .map(|(j, p)| (geometry::at_arc_length(nodes, j as f64 / half) - p).norm())
+                    .fold(0.0, f64::max)
+            }
+            _ => {
+                geometry::edges(self.nodes.len() - 1, lengths, &mut self.edges);
+                geometry::largest_distance_at(&self.nodes, &self.edges, nodes, edges)
+            }
+        };
         Some(ErrorEstimate {
             tip: (tip - shadow_tip).norm() * self.richardson,
             shape: shape * self.richardson,
@@ -149,8 +166,8 @@ mod tests {
             .unwrap();
         let mut nodes = Vec::new();
         geometry::nodes(&scene.initial_angles(10), &mut nodes);
-        let e = shadow.estimate(0, &nodes).unwrap();
+        let e = shadow.estimate(0, &nodes, None).unwrap();
         assert!(e.tip < 1e-15 && e.shape < 1e-15);
-        assert!(shadow.estimate(1, &nodes).is_none());
+        assert!(shadow.estimate(1, &nodes, None).is_none());
     }
 }

@@ -196,13 +196,19 @@ fn measure_disagreement(
     let Some(reference) = instant
         .iter()
         .find(|(i, _)| *i == best)
-        .map(|(_, f)| f.nodes.clone())
+        .map(|(_, f)| (f.nodes.clone(), f.edges.clone()))
     else {
         return;
     };
     for (i, frame) in instant.iter_mut() {
-        let disagreement =
-            (*i != best).then(|| geometry::largest_distance(&frame.nodes, &reference));
+        let disagreement = (*i != best).then(|| {
+            geometry::largest_distance_of(
+                &frame.nodes,
+                frame.edges.as_deref(),
+                &reference.0,
+                reference.1.as_deref(),
+            )
+        });
         if let Some(d) = disagreement {
             largest[*i] = Some(largest[*i].map_or(d, |l: f64| l.max(d)));
         }

@@ -59,6 +59,9 @@ pub struct Frame {
     /// Node positions in the room, support … tip (N + 1 points, eqs. 14–15, from the
     /// support where it is now).
     pub nodes: Vec<Point>,
+    /// Where each node sits along the string (s = 0 at the support, 1 at the tip) for rods of
+    /// unequal lengths ([`Method::lengths`]); `None` for equal segments, node i at i/N.
+    pub edges: Option<Vec<f64>>,
     /// Tension on each segment, the first at [`Frame::tension_first_at`] segments from the
     /// support, the others a segment apart.
     pub tension: Vec<f64>,
@@ -216,8 +219,14 @@ impl EnergyBase {
 pub fn frame(method: &mut dyn Method, obs: &mut Observation, base: EnergyBase) -> Frame {
     method.observe(obs);
     let support = method.support();
+    let lengths = method.lengths();
     let mut nodes = Vec::with_capacity(obs.angle.len() + 1);
-    geometry::nodes(&obs.angle, &mut nodes);
+    geometry::nodes_of(&obs.angle, lengths, &mut nodes);
+    let edges = lengths.map(|l| {
+        let mut edges = Vec::with_capacity(l.len() + 1);
+        geometry::edges(l.len(), Some(l), &mut edges);
+        edges
+    });
     support::into_the_room(support, &mut nodes);
     let moving = Vector2::new(support.map_or(0.0, |s| s.velocity), 0.0);
     let energy = method.energy();
@@ -228,18 +237,21 @@ pub fn frame(method: &mut dyn Method, obs: &mut Observation, base: EnergyBase) -
         step: method.steps(),
         time: method.time(),
         nodes,
+        edges,
         tension: obs.tension.clone(),
         tension_first_at: first_at,
         energy,
         energy_deviation: (kept - base.reference) / base.scale,
         balance: support.map(|_| kept - base.start),
         support,
-        tip_velocity: geometry::tip_velocity(&obs.angle, &obs.angular_velocity) + moving,
-        momentum: geometry::momentum(&obs.angle, &obs.angular_velocity) + moving,
-        tip_acceleration: geometry::tip_acceleration(
+        tip_velocity: geometry::tip_velocity_of(&obs.angle, &obs.angular_velocity, lengths)
+            + moving,
+        momentum: geometry::momentum_of(&obs.angle, &obs.angular_velocity, lengths) + moving,
+        tip_acceleration: geometry::tip_acceleration_of(
             &obs.angle,
             &obs.angular_velocity,
             &obs.angular_acceleration,
+            lengths,
         ) + Vector2::new(support.map_or(0.0, |s| s.acceleration), 0.0),
         support_tension: method.support_tension(),
         constraint_residual: method.constraint_residual(),
@@ -349,7 +361,7 @@ pub fn run_watched(
         energy_final: method.energy_less_work(),
         max_abs_deviation: 0.0,
         frames: 0,
-        tip: tip_in_the_room(method.support(), method.angles()),
+        tip: tip_in_the_room(method.support(), method.angles(), method.lengths()),
         support_tension: method.support_tension(),
         max_support_tension: (method.support_tension(), method.time()),
         trusted: (method.steps(), method.time()),
@@ -413,18 +425,19 @@ pub fn run_watched(
     if outcome.diverged.is_none() {
         outcome.energy_final = method.energy_less_work();
         method.observe(&mut obs);
-        outcome.tip = tip_in_the_room(method.support(), &obs.angle);
+        outcome.tip = tip_in_the_room(method.support(), &obs.angle, method.lengths());
         outcome.support_tension = method.support_tension();
         outcome.trusted = (outcome.steps, outcome.time);
     } else {
-        outcome.tip = tip_in_the_room(trusted_support, &trusted_angles);
+        outcome.tip = tip_in_the_room(trusted_support, &trusted_angles, method.lengths());
     }
     outcome
 }
 
-/// The free end of rods at `angles` in the room, hanging from `support` (if it moves).
-fn tip_in_the_room(support: Option<SupportNow>, angles: &[f64]) -> Point {
-    let mut tip = [geometry::tip(angles)];
+/// The free end of rods at `angles` (of `lengths`, [`Method::lengths`]) in the room, hanging
+/// from `support` (if it moves).
+fn tip_in_the_room(support: Option<SupportNow>, angles: &[f64], lengths: Option<&[f64]>) -> Point {
+    let mut tip = [geometry::tip_of(angles, lengths)];
     support::into_the_room(support, &mut tip);
     tip[0]
 }
@@ -434,7 +447,7 @@ fn estimate(watch: &mut Watch<'_>, f: &mut Frame, outcome: &mut Outcome) {
     let Some(said) = outcome.estimate.as_mut() else {
         return;
     };
-    f.error_estimate = watch.shadow.estimate(f.step, &f.nodes);
+    f.error_estimate = watch.shadow.estimate(f.step, &f.nodes, f.edges.as_deref());
     match f.error_estimate {
         Some(e) => {
             if e.tip > said.max_tip {

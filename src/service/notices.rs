@@ -399,7 +399,7 @@ pub fn blow_up_warning(plan: &RunPlan, side_by_side: bool) -> Option<Notice> {
     }
     let stable: Vec<&str> = MethodKind::ALL
         .iter()
-        .filter(|m| m.descriptor().blow_up.is_empty())
+        .filter(|m| m.descriptor().blow_up.is_empty() && m.descriptor().steady_cost)
         .map(|m| m.name())
         .collect();
     Some(Notice::new(

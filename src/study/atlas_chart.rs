@@ -9,9 +9,10 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
 
-/// `atlas.svg` and `.png` into `dir`.
-pub fn write(dir: &Path, atlas: &Atlas) -> anyhow::Result<()> {
-    render_chart!(dir, "atlas", draw, atlas)
+/// `{name}.svg` and `.png` into `dir`: the atlas of `rods` ("the rods'", "the graded
+/// rods'"), named so in the caption.
+pub fn write(dir: &Path, name: &str, rods: &str, atlas: &Atlas) -> anyhow::Result<()> {
+    render_chart!(dir, name, draw, atlas, rods)
 }
 
 /// The colour of the `i`-th of `count` angles: red at the horizontal to blue at the vertical.
@@ -21,17 +22,24 @@ fn angle_colour(i: usize, count: usize) -> RGBColor {
     RGBColor(mix(210.0, 30.0), mix(40.0, 90.0), mix(30.0, 210.0))
 }
 
-fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, atlas: &Atlas) -> Drawn<DB> {
+fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, atlas: &Atlas, rods: &str) -> Drawn<DB> {
     root.fill(&WHITE)?;
     let rows: Vec<(f64, Vec<(usize, f64)>)> = atlas
         .rows()
         .filter(|(_, points)| points.iter().any(|&(_, e)| e > 1e-9))
         .collect();
     let law = MethodKind::Chain.descriptor().error_model;
-    let (lo, hi) = (10.0, 800.0);
+    let finest = rows
+        .iter()
+        .flat_map(|(_, points)| points.iter().map(|&(n, _)| n))
+        .max()
+        .unwrap_or(566);
+    let (lo, hi) = (10.0, 1.4 * finest as f64);
     let mut chart = ChartBuilder::on(root)
         .caption(
-            "The release atlas: the rods' worst tip error to t = 3, times N, from each release angle",
+            format!(
+                "The release atlas: {rods} worst tip error to t = 3, times N, from each release angle"
+            ),
             (SANS, 20),
         )
         .margin(15)
@@ -69,9 +77,10 @@ fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, atlas: &Atlas) -> Dra
             .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], colour.stroke_width(2)));
         chart.draw_series(line.into_iter().map(|p| Circle::new(p, 3, colour.filled())))?;
     }
+    // Above the lines, which fall below 0.4 past N = 100 at every angle.
     legend(
         chart.configure_series_labels(),
-        SeriesLabelPosition::LowerRight,
+        SeriesLabelPosition::UpperRight,
         12,
     )
 }

@@ -132,10 +132,23 @@ pub struct Row {
 
 /// Positions at s = 0, 0.1, …, 1 along the string with segment angles `angles`.
 pub fn shape(angles: &[f64]) -> Vec<Point> {
+    shape_of(angles, None)
+}
+
+/// As [`shape`], for rods of `lengths` where they are given ([`Method::lengths`]).
+pub fn shape_of(angles: &[f64], lengths: Option<&[f64]>) -> Vec<Point> {
     let mut nodes = Vec::with_capacity(angles.len() + 1);
-    geometry::nodes(angles, &mut nodes);
+    geometry::nodes_of(angles, lengths, &mut nodes);
+    let at = |s: f64| match lengths {
+        None => geometry::at_arc_length(&nodes, s),
+        Some(l) => {
+            let mut edges = Vec::with_capacity(l.len() + 1);
+            geometry::edges(l.len(), Some(l), &mut edges);
+            geometry::walk_to(&nodes, &edges, 0, s).1
+        }
+    };
     (0..SHAPE_POINTS)
-        .map(|j| geometry::at_arc_length(&nodes, j as f64 / (SHAPE_POINTS - 1) as f64))
+        .map(|j| at(j as f64 / (SHAPE_POINTS - 1) as f64))
         .collect()
 }
 
@@ -191,7 +204,7 @@ pub fn run_cell(scene: &Scene, duration: f64, method: MethodKind, segments: usiz
     let mut obs = Observation::default();
     solver.observe(&mut obs);
     row.tip = Some(outcome.tip);
-    row.shape = Some(shape(&obs.angle));
+    row.shape = Some(shape_of(&obs.angle, solver.lengths()));
     row.frame_tips = frame_tips;
     row
 }

@@ -106,6 +106,17 @@ impl TipReference {
         Self::refined(scene, segments, segments, 0.0, duration)
     }
 
+    /// As [`TipReference::compute`], of `method`'s runs at their default steps (the graded
+    /// rods', whose tip converges faster through the whip).
+    pub fn compute_by(
+        method: MethodKind,
+        scene: &Scene,
+        segments: usize,
+        duration: f64,
+    ) -> anyhow::Result<Self> {
+        Self::refined_by(method, scene, segments, segments, 0.0, duration)
+    }
+
     /// The reference from N = `segments` (with N/2 and 2N), N then doubled while its own
     /// error is above `target` and N is below `most`: each doubling one more run, at 2N.
     pub fn refined(
@@ -115,9 +126,29 @@ impl TipReference {
         target: f64,
         duration: f64,
     ) -> anyhow::Result<Self> {
+        Self::refined_by(
+            MethodKind::REFERENCE,
+            scene,
+            segments,
+            most,
+            target,
+            duration,
+        )
+    }
+
+    /// As [`TipReference::refined`], of `method`'s runs.
+    pub fn refined_by(
+        method: MethodKind,
+        scene: &Scene,
+        segments: usize,
+        most: usize,
+        target: f64,
+        duration: f64,
+    ) -> anyhow::Result<Self> {
+        let compute = |n| Trajectory::compute_by(method, scene, n, duration);
         let mut runs = [segments / 2, segments, 2 * segments]
             .into_par_iter()
-            .map(|n| Trajectory::compute(scene, n, duration))
+            .map(compute)
             .collect::<anyhow::Result<Vec<_>>>()?;
         let mut n = segments;
         loop {
@@ -140,7 +171,7 @@ impl TipReference {
             }
             n *= 2;
             runs.remove(0);
-            runs.push(Trajectory::compute(scene, 2 * n, duration)?);
+            runs.push(compute(2 * n)?);
         }
     }
 

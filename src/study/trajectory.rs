@@ -39,7 +39,16 @@ impl Trajectory {
     /// [`MethodKind::REFERENCE`] at `segments` and its default step, from `scene` to
     /// `duration`.
     pub fn compute(scene: &Scene, segments: usize, duration: f64) -> anyhow::Result<Self> {
-        let method = MethodKind::REFERENCE;
+        Self::compute_by(MethodKind::REFERENCE, scene, segments, duration)
+    }
+
+    /// `method` at `segments` and its default step, from `scene` to `duration`.
+    pub fn compute_by(
+        method: MethodKind,
+        scene: &Scene,
+        segments: usize,
+        duration: f64,
+    ) -> anyhow::Result<Self> {
         Ok(Self::keep(
             scene,
             method,
@@ -63,16 +72,10 @@ impl Trajectory {
             return Self::compute(scene, segments, duration);
         }
         let dt = MethodKind::Chain.default_dt(segments);
-        let mut chain = Chain::graded(scene, segments, dt, exponent)?;
-        let length = chain.lengths();
-        let tip = |angles: &[f64]| {
-            angles
-                .iter()
-                .zip(&length)
-                .fold(Point::origin(), |p, (&phi, &l)| {
-                    p + l * geometry::tangent(phi)
-                })
-        };
+        let descriptor = MethodKind::Graded.descriptor();
+        let mut chain = Chain::graded(descriptor, scene, segments, dt, exponent)?;
+        let length = chain.lengths().map(<[f64]>::to_vec);
+        let tip = |angles: &[f64]| geometry::tip_of(angles, length.as_deref());
         let (tips, _) = Self::tips_of(&mut chain, dt, duration, tip, |d| {
             anyhow::anyhow!("graded chain at N = {segments}: {d}")
         })?;
@@ -90,7 +93,9 @@ impl Trajectory {
         duration: f64,
     ) -> anyhow::Result<Kept> {
         let mut run = method.build(scene, segments, dt)?;
-        let (tips, angles) = Self::tips_of(run.as_mut(), dt, duration, geometry::tip, |d| {
+        let length = run.lengths().map(<[f64]>::to_vec);
+        let tip = |angles: &[f64]| geometry::tip_of(angles, length.as_deref());
+        let (tips, angles) = Self::tips_of(run.as_mut(), dt, duration, tip, |d| {
             anyhow::anyhow!(
                 "the run of the {method} method at N = {segments}, k = {dt:e} from the {scene} failed: {d}"
             )

@@ -1,0 +1,57 @@
+//! Rods graded towards the free end: the chain's method (joint forces, RK4) on N rods whose
+//! lengths shrink towards the tip, rod i spanning s_i = 1 − (1 − i/N)^1.5 to s_{i+1}. The whip
+//! of a falling string happens in its last few rods; on equal rods the tip's error through it
+//! falls only at first order in h, and graded rods resolve it: from 30° they need about 2.6
+//! times fewer rods for a tip error of 1e-4 (`docs/measurements.md`).
+//!
+//! The grading is 1.5, not stronger: at 2 and above the shortest end rods spin at up to 2e4
+//! radians a time unit in the whip, and their substeps (each rod's own wave and spin must be
+//! resolved) cost more than the rods save. Only releases: a release is straight, so every rod
+//! starts at its angle whatever its length.
+
+use super::chain::{self, Chain};
+use super::method::Descriptor;
+use crate::model::Scene;
+
+/// The exponent of the grading: s_i = 1 − (1 − i/N)^GRADING.
+pub const GRADING: f64 = 1.5;
+
+/// The lowest release angle, in degrees, from which the end rods come out of the whip
+/// without spinning on: from 10° and below they go on spinning (from 0° at N = 600, each
+/// 0.05 of a time unit after t = 1.4 took 18 s of substeps), out of reach of the adaptive
+/// steps and of the cost model. `--tolerance` chooses the graded rods from here up only.
+pub const SPIN_FREE_FROM: f64 = 20.0;
+
+/// What the graded rods say of themselves (see [`Descriptor`]): the chain's, but for what
+/// the grading changes.
+pub const DESCRIPTOR: Descriptor = Descriptor {
+    name: "graded",
+    limit_meaning: "substeps start: k = C h / sqrt(F_max), h = 1/N (each rod's own wave and spin then add substeps)",
+    // `cargo bench --bench step -- graded_step` at N = 1000 (the chain: 169): each rod's own
+    // wave sqrt(F_i)/l_i and spin set the substeps, and the short end rods add them in the
+    // whip.
+    ns_per_segment_step: 340.0,
+    discretization: "graded rods",
+    // Its short end rods, once whipped round, spin on and add substeps: from 30° at N = 100
+    // over 60 time units, 3 times the chain's cost per step.
+    steady_cost: false,
+    // The chain's vectors and the rods' lengths.
+    bytes_per_segment: chain::DESCRIPTOR.bytes_per_segment + 8,
+    // The chain's one law, not refitted: it bounds every entry of the graded rods' atlas
+    // (20° to 90°, N = 16 to 1131, at most 0.40/N; `plan::atlas`'s tests check it) and their
+    // worst error from 30° at N = 50 within 3 times (`tests/estimate.rs`). Near the horizontal,
+    // where the end rods spin on, the rule does not choose them.
+    error_model: chain::DESCRIPTOR.error_model,
+    colours: ([100, 210, 215], [0, 105, 120]),
+    build: |scene, segments, dt| {
+        Ok(Box::new(Chain::graded(
+            &DESCRIPTOR,
+            scene,
+            segments,
+            dt,
+            GRADING,
+        )?))
+    },
+    plannable: |scene| matches!(scene, Scene::Release { angle_deg } if *angle_deg >= SPIN_FREE_FROM),
+    ..chain::DESCRIPTOR
+};
