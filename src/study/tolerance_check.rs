@@ -308,10 +308,22 @@ pub fn measure(
     })
 }
 
+/// The method the check's reference of `scene` is made of: the graded rods where the rule may
+/// choose them (a release from 20° up: their tip converges faster through the whip, and
+/// their end rods do not spin on), else [`MethodKind::REFERENCE`].
+pub fn reference_method(scene: &Scene) -> MethodKind {
+    match (MethodKind::Graded.descriptor().plannable)(scene) {
+        true => MethodKind::Graded,
+        false => MethodKind::REFERENCE,
+    }
+}
+
 /// What one scene's reference showed of itself.
 #[derive(Clone, Copy, Debug)]
 pub struct ReferenceNote {
     pub scene: Scene,
+    /// The method whose runs make it ([`reference_method`]).
+    pub method: MethodKind,
     /// [`TipReference::segments`].
     pub segments: usize,
     /// The order of the reference method's convergence in N there.
@@ -344,7 +356,8 @@ pub fn check(spec: &CheckSpec, tick: impl Fn() + Sync) -> anyhow::Result<Checked
         .scenes
         .par_iter()
         .map(|scene| {
-            let reference = TipReference::refined(
+            let reference = TipReference::refined_by(
+                reference_method(scene),
                 scene,
                 spec.reference_segments,
                 spec.reference_segments_max,
@@ -361,6 +374,7 @@ pub fn check(spec: &CheckSpec, tick: impl Fn() + Sync) -> anyhow::Result<Checked
         .zip(&scene_references)
         .map(|(scene, r)| ReferenceNote {
             scene: *scene,
+            method: reference_method(scene),
             segments: r.segments,
             order: r.order,
             own_error: r.own_error,
@@ -429,15 +443,16 @@ pub fn markdown(spec: &CheckSpec, checked: &Checked, command: &str) -> String {
         "# `--tolerance` against the truth\n\n`{command}`\n\n\
          For each scene and EPS, the run `rope run --tolerance EPS --duration {}` makes (its \
          pilots, then the chosen method, N and k with its shadow at N/2) is compared at every \
-         frame ({LOG_RATE} per time unit) with the tip of a reference: the {} method at N/2, N \
-         and 2N, extrapolated in N at the order the three show, N doubled from {} (up to {}) \
+         frame ({LOG_RATE} per time unit) with the tip of a reference: the {} method (the graded \
+         rods where their end rods do not spin on, a release from 20° up: their tip converges \
+         faster through the whip) at N/2, N and 2N, extrapolated in N at the order the three show, N doubled from {} (up to {}) \
          until the reference's own error is at most {REFERENCE_MARGIN} × the smallest EPS. Its \
          CPU (one thread, pilots included) is set beside the cheapest run of the grid (every \
          method that can start, at N = {:?}, each at its default step and at its tolerance step \
          where that is another, without a shadow) whose largest error also holds EPS. A \
          tolerance is checked only where the reference's own error is at most \
          {REFERENCE_MARGIN} × EPS.\n\n## References\n\n\
-         | scene | N (runs at N/2, N, 2N) | observed order | own error |\n|---|---|---|---|\n",
+         | scene | method | N (runs at N/2, N, 2N) | observed order | own error |\n|---|---|---|---|---|\n",
         spec.duration,
         MethodKind::REFERENCE,
         spec.reference_segments,
@@ -446,8 +461,8 @@ pub fn markdown(spec: &CheckSpec, checked: &Checked, command: &str) -> String {
     );
     for r in &checked.references {
         text += &format!(
-            "| {} | {} | {:.2} | {:.1e} |\n",
-            r.scene, r.segments, r.order, r.own_error
+            "| {} | {} | {} | {:.2} | {:.1e} |\n",
+            r.scene, r.method, r.segments, r.order, r.own_error
         );
     }
     text += "\n## Choices\n\n| scene | EPS | chosen (from) | true worst error | held | CPU s (pilots + run) | grid's cheapest holding EPS | its worst error | its CPU s | ratio | notes |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
