@@ -408,24 +408,29 @@ fn from_30_degrees_at_1e_4_the_graded_rods_are_chosen_from_their_atlas_for_a_fra
     assert!(tolerance::from_atlas(MethodKind::Graded, &horizontal, 3.0, 1e-2).is_none());
 }
 
-/// The release from 30° against the graded rods at N = 800, 1600, 3200, extrapolated: its
-/// own error a few 1e-6. `cargo test --release --test pilots -- --ignored --nocapture`
-/// (about five minutes of CPU).
-#[test]
-#[ignore]
-fn a_release_from_30_degrees_holds_1e_4_against_the_graded_reference_at_every_frame() {
-    let thirty = Scene::Release { angle_deg: 30.0 };
-    let reference = TipReference::compute_by(MethodKind::Graded, &thirty, 1600, 3.0).unwrap();
+/// The release from `angle_deg` to `duration` of the graded rods at N = 800, 1600, 3200,
+/// extrapolated, its own error printed and asserted to be at most `own`.
+fn graded_reference(angle_deg: f64, duration: f64, own: f64) -> TipReference {
+    let scene = Scene::Release { angle_deg };
+    let reference = TipReference::compute_by(MethodKind::Graded, &scene, 1600, duration).unwrap();
     eprintln!(
-        "graded reference from 30° at N = 800, 1600, 3200: order {:.2}, own error {:.1e}",
+        "graded reference from {angle_deg}° to t = {duration} at N = 800, 1600, 3200: order {:.2}, own error {:.1e}",
         reference.order, reference.own_error
     );
     assert!(
-        reference.own_error <= 1e-5,
+        reference.own_error <= own,
         "own error {:.1e}",
         reference.own_error
     );
-    thirty_degrees_holds("1e-4", &reference);
+    reference
+}
+
+/// The release from 30° against the graded rods: their reference's own error a few 1e-6.
+/// `cargo test --release --test pilots -- --ignored --nocapture` (about five minutes of CPU).
+#[test]
+#[ignore]
+fn a_release_from_30_degrees_holds_1e_4_against_the_graded_reference_at_every_frame() {
+    thirty_degrees_holds("1e-4", &graded_reference(30.0, 3.0, 1e-5));
 }
 
 /// `rope run --angle 45 --tolerance 1e-3 --duration 5`, past the atlases' t = 3 (the pilots'
@@ -435,17 +440,7 @@ fn a_release_from_30_degrees_holds_1e_4_against_the_graded_reference_at_every_fr
 #[test]
 #[ignore]
 fn a_release_from_45_degrees_over_5_units_holds_1e_3_against_the_graded_reference() {
-    let scene = Scene::Release { angle_deg: 45.0 };
-    let reference = TipReference::compute_by(MethodKind::Graded, &scene, 1600, 5.0).unwrap();
-    eprintln!(
-        "graded reference from 45° to t = 5 at N = 800, 1600, 3200: order {:.2}, own error {:.1e}",
-        reference.order, reference.own_error
-    );
-    assert!(
-        reference.own_error <= 1e-4,
-        "own error {:.1e}",
-        reference.own_error
-    );
+    let reference = graded_reference(45.0, 5.0, 1e-4);
     let flags = ["--angle", "45", "--tolerance", "1e-3", "--duration", "5"];
     let (s, _) = tolerance_run("pilot-45-5", &flags);
     let worst = worst_tip_error(&s["tip_samples"], |t| reference.at(t));

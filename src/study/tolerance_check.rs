@@ -103,7 +103,7 @@ pub struct TipReference {
 impl TipReference {
     /// The reference from the runs at N/2, N and 2N (computed in parallel).
     pub fn compute(scene: &Scene, segments: usize, duration: f64) -> anyhow::Result<Self> {
-        Self::refined(scene, segments, segments, 0.0, duration)
+        Self::compute_by(MethodKind::REFERENCE, scene, segments, duration)
     }
 
     /// As [`TipReference::compute`], of `method`'s runs at their default steps (the graded
@@ -117,26 +117,9 @@ impl TipReference {
         Self::refined_by(method, scene, segments, segments, 0.0, duration)
     }
 
-    /// The reference from N = `segments` (with N/2 and 2N), N then doubled while its own
-    /// error is above `target` and N is below `most`: each doubling one more run, at 2N.
-    pub fn refined(
-        scene: &Scene,
-        segments: usize,
-        most: usize,
-        target: f64,
-        duration: f64,
-    ) -> anyhow::Result<Self> {
-        Self::refined_by(
-            MethodKind::REFERENCE,
-            scene,
-            segments,
-            most,
-            target,
-            duration,
-        )
-    }
-
-    /// As [`TipReference::refined`], of `method`'s runs.
+    /// The reference of `method`'s runs from N = `segments` (with N/2 and 2N), N then doubled
+    /// while its own error is above `target` and N is below `most`: each doubling one more
+    /// run, at 2N.
     pub fn refined_by(
         method: MethodKind,
         scene: &Scene,
