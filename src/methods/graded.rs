@@ -17,9 +17,11 @@ use crate::model::Scene;
 pub const GRADING: f64 = 1.5;
 
 /// The lowest release angle, in degrees, from which the end rods come out of the whip
-/// without spinning on: from 10° and below they go on spinning (from 0° at N = 600, each
-/// 0.05 of a time unit after t = 1.4 took 18 s of substeps), out of reach of the adaptive
-/// steps and of the cost model. `--tolerance` chooses the graded rods from here up only.
+/// without spinning on: from 10° and below they may go on spinning, out of reach of the
+/// adaptive steps and of the cost model. At N = 600 to t = 1.6, from 0° at the tolerance
+/// step (k = 1/1920) a step cost 43 000 ns per segment, from 10° to t = 2 at the default step
+/// 4 500; from 30°, 206 (`rope run --method graded --segments 600 …`, `docs/physics.md`).
+/// `--tolerance` chooses the graded rods from here up only.
 pub const SPIN_FREE_FROM: f64 = 20.0;
 
 /// What the graded rods say of themselves (see [`Descriptor`]): the chain's, but for what
