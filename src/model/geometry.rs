@@ -79,7 +79,7 @@ pub fn edges(segments: usize, lengths: Option<&[f64]>, out: &mut Vec<f64>) {
 /// The point at arc length `s` along the string whose nodes `nodes` sit at arc lengths
 /// `edges` (support … tip, both increasing), from node `from` on: the node before `s` and
 /// the point, so that a walk along increasing `s` starts where the last one stopped.
-pub fn walk_to(nodes: &[Point], edges: &[f64], from: usize, s: f64) -> (usize, Point) {
+fn walk_to(nodes: &[Point], edges: &[f64], from: usize, s: f64) -> (usize, Point) {
     let segments = nodes.len().saturating_sub(1);
     if segments == 0 {
         return (0, nodes.first().copied().unwrap_or_else(Point::origin));
@@ -125,13 +125,7 @@ pub fn at_arc_length(nodes: &[Point], s: f64) -> Point {
 /// The largest distance between two strings at equal arc length, over the nodes of the finer
 /// (`a` and `b` are node lists, support … tip, of any two segment counts).
 pub fn largest_distance(a: &[Point], b: &[Point]) -> f64 {
-    let points = a.len().max(b.len()).max(2);
-    (0..points)
-        .map(|j| {
-            let s = j as f64 / (points - 1) as f64;
-            (at_arc_length(a, s) - at_arc_length(b, s)).norm()
-        })
-        .fold(0.0, f64::max)
+    largest_distance_of(a, None, b, None)
 }
 
 /// As [`largest_distance`], for strings whose nodes sit at arc lengths `a_edges` and
@@ -143,9 +137,6 @@ pub fn largest_distance_of(
     b: &[Point],
     b_edges: Option<&[f64]>,
 ) -> f64 {
-    if a_edges.is_none() && b_edges.is_none() {
-        return largest_distance(a, b);
-    }
     let points = a.len().max(b.len()).max(2);
     let (mut on_a, mut on_b) = (Along::new(a, a_edges), Along::new(b, b_edges));
     (0..points)
@@ -173,15 +164,16 @@ pub fn largest_distance_at(
 }
 
 /// A walk along a string by increasing arc length: its nodes, where they sit (`None`: equal
-/// segments) and the segment the walk has reached.
-struct Along<'a> {
+/// segments, [`at_arc_length`]) and the segment the walk has reached.
+pub struct Along<'a> {
     nodes: &'a [Point],
     edges: Option<&'a [f64]>,
     segment: usize,
 }
 
 impl<'a> Along<'a> {
-    fn new(nodes: &'a [Point], edges: Option<&'a [f64]>) -> Self {
+    /// The walk along `nodes` (at arc lengths `edges`) from the support.
+    pub fn new(nodes: &'a [Point], edges: Option<&'a [f64]>) -> Self {
         Self {
             nodes,
             edges,
@@ -190,7 +182,7 @@ impl<'a> Along<'a> {
     }
 
     /// The point at arc length `s`, at or past the last one asked for.
-    fn at(&mut self, s: f64) -> Point {
+    pub fn at(&mut self, s: f64) -> Point {
         let Some(edges) = self.edges else {
             return at_arc_length(self.nodes, s);
         };

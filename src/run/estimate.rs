@@ -34,7 +34,7 @@ pub struct Shadow {
     /// Why the shadow stopped, if it did: the estimates end there.
     lost: Option<Diverged>,
     nodes: Vec<Point>,
-    /// The shadow's nodes' arc lengths, for rods of unequal lengths.
+    /// The shadow's nodes' arc lengths.
     edges: Vec<f64>,
 }
 
@@ -71,7 +71,7 @@ impl Shadow {
             richardson: 1.0 / (ratio.powi(order as i32) - 1.0),
             lost: None,
             nodes: Vec::with_capacity(half + 1),
-            edges: Vec::new(),
+            edges: Vec::with_capacity(half + 1),
         }))
     }
 
@@ -118,20 +118,8 @@ impl Shadow {
         crate::model::support::into_the_room(self.method.support(), &mut self.nodes);
         let tip = nodes.last().copied().unwrap_or_else(Point::origin);
         let shadow_tip = self.nodes.last().copied().unwrap_or_else(Point::origin);
-        let shape = match (edges, lengths) {
-            (None, None) => {
-                let half = self.nodes.len().saturating_sub(1).max(1) as f64;
-                self.nodes
-                    .iter()
-                    .enumerate()
-                    .map(|(j, p)| (geometry::at_arc_length(nodes, j as f64 / half) - p).norm())
-                    .fold(0.0, f64::max)
-            }
-            _ => {
-                geometry::edges(self.nodes.len() - 1, lengths, &mut self.edges);
-                geometry::largest_distance_at(&self.nodes, &self.edges, nodes, edges)
-            }
-        };
+        geometry::edges(self.nodes.len() - 1, lengths, &mut self.edges);
+        let shape = geometry::largest_distance_at(&self.nodes, &self.edges, nodes, edges);
         Some(ErrorEstimate {
             tip: (tip - shadow_tip).norm() * self.richardson,
             shape: shape * self.richardson,

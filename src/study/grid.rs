@@ -139,16 +139,14 @@ pub fn shape(angles: &[f64]) -> Vec<Point> {
 pub fn shape_of(angles: &[f64], lengths: Option<&[f64]>) -> Vec<Point> {
     let mut nodes = Vec::with_capacity(angles.len() + 1);
     geometry::nodes_of(angles, lengths, &mut nodes);
-    let at = |s: f64| match lengths {
-        None => geometry::at_arc_length(&nodes, s),
-        Some(l) => {
-            let mut edges = Vec::with_capacity(l.len() + 1);
-            geometry::edges(l.len(), Some(l), &mut edges);
-            geometry::walk_to(&nodes, &edges, 0, s).1
-        }
-    };
+    let edges = lengths.map(|l| {
+        let mut edges = Vec::with_capacity(l.len() + 1);
+        geometry::edges(l.len(), Some(l), &mut edges);
+        edges
+    });
+    let mut along = geometry::Along::new(&nodes, edges.as_deref());
     (0..SHAPE_POINTS)
-        .map(|j| at(j as f64 / (SHAPE_POINTS - 1) as f64))
+        .map(|j| along.at(j as f64 / (SHAPE_POINTS - 1) as f64))
         .collect()
 }
 

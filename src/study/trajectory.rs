@@ -74,9 +74,7 @@ impl Trajectory {
         let dt = MethodKind::Chain.default_dt(segments);
         let descriptor = MethodKind::Graded.descriptor();
         let mut chain = Chain::graded(descriptor, scene, segments, dt, exponent)?;
-        let length = chain.lengths().map(<[f64]>::to_vec);
-        let tip = |angles: &[f64]| geometry::tip_of(angles, length.as_deref());
-        let (tips, _) = Self::tips_of(&mut chain, dt, duration, tip, |d| {
+        let (tips, _) = Self::tips_of(&mut chain, dt, duration, |d| {
             anyhow::anyhow!("graded chain at N = {segments}: {d}")
         })?;
         Ok(Self::new(dt, tips))
@@ -93,9 +91,7 @@ impl Trajectory {
         duration: f64,
     ) -> anyhow::Result<Kept> {
         let mut run = method.build(scene, segments, dt)?;
-        let length = run.lengths().map(<[f64]>::to_vec);
-        let tip = |angles: &[f64]| geometry::tip_of(angles, length.as_deref());
-        let (tips, angles) = Self::tips_of(run.as_mut(), dt, duration, tip, |d| {
+        let (tips, angles) = Self::tips_of(run.as_mut(), dt, duration, |d| {
             anyhow::anyhow!(
                 "the run of the {method} method at N = {segments}, k = {dt:e} from the {scene} failed: {d}"
             )
@@ -108,15 +104,17 @@ impl Trajectory {
         })
     }
 
-    /// `run`'s `tip` at every step of `dt` to two past `duration`, and its angles at the step
-    /// a run to `duration` ends on; a step that fails ends it with `failed`'s error.
+    /// `run`'s tip (of its rods' own lengths) at every step of `dt` to two past `duration`,
+    /// and its angles at the step a run to `duration` ends on; a step that fails ends it with
+    /// `failed`'s error.
     fn tips_of(
         run: &mut dyn Method,
         dt: f64,
         duration: f64,
-        tip: impl Fn(&[f64]) -> Point,
         failed: impl Fn(Diverged) -> anyhow::Error,
     ) -> anyhow::Result<(Vec<Point>, Vec<f64>)> {
+        let lengths = run.lengths().map(<[f64]>::to_vec);
+        let tip = |angles: &[f64]| geometry::tip_of(angles, lengths.as_deref());
         let last = (duration / dt).round() as usize;
         let mut tips = Vec::with_capacity(last + 3);
         tips.push(tip(run.angles()));
