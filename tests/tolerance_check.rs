@@ -1,6 +1,7 @@
 //! `rope study --tolerance-check quick`, the small version CI runs: what `--tolerance` chooses
 //! in two scenes, held against a converged reference at every frame.
 
+use rope::Scene;
 use rope::study::tolerance_check::{CheckSpec, REFERENCE_MARGIN, check};
 
 #[test]
@@ -21,6 +22,20 @@ fn the_quick_tolerance_check_holds_eps_against_a_converged_reference_in_each_sce
             r.scene,
             r.own_error
         );
+    }
+    // Each reference starts where its scene does (y down): a release's tip at (cos θ, sin θ),
+    // where every run starts too (its own error there is nil), a mode's hanging nearly
+    // straight down.
+    assert_eq!(checked.tips.len(), spec.scenes.len());
+    for (scene, tip) in spec.scenes.iter().zip(&checked.tips) {
+        let start = tip.at(0.0);
+        if let Scene::Release { angle_deg } = *scene {
+            let angle = angle_deg.to_radians();
+            assert!((start.x - angle.cos()).abs() < 1e-12 && (start.y - angle.sin()).abs() < 1e-12);
+            assert!(tip.own_error_at(0.0) < 1e-12);
+        } else {
+            assert!((start.y - 1.0).abs() < 1e-2, "{scene}: {start}");
+        }
     }
     assert_eq!(cells.len(), spec.scenes.len());
     for cell in cells {

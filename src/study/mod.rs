@@ -325,8 +325,8 @@ pub fn execute_estimate_check(
 }
 
 /// What `--tolerance` chooses in each scene of `spec`, against the truth and the grid's
-/// cheapest run; writes `tolerance_check.md` and the chart `tolerance_check.svg`/`.png` into
-/// `out`. Returns the Markdown. `tick` is called once per reference, run and choice.
+/// cheapest run; writes `tolerance_check.md`, the references' tips (`references.csv`) and
+/// the chart `tolerance_check.svg`/`.png` into `out`. Returns the Markdown. `tick` is called once per reference, run and choice.
 pub fn execute_tolerance_check(
     spec: &tolerance_check::CheckSpec,
     out: &Path,
@@ -334,7 +334,11 @@ pub fn execute_tolerance_check(
     tick: impl Fn() + Sync,
 ) -> anyhow::Result<String> {
     create_dir(out)?;
+    use anyhow::Context as _;
     let checked = tolerance_check::check(spec, tick)?;
+    let csv = out.join("references.csv");
+    tolerance_check::write_references(&csv, &spec.scenes, &checked.tips, spec.duration)
+        .with_context(|| format!("writing {}", csv.display()))?;
     let markdown = tolerance_check::markdown(spec, &checked, command);
     write(&out.join("tolerance_check.md"), &markdown)?;
     charts::register_font()?;

@@ -8,6 +8,7 @@ use super::estimate_check::Trajectory;
 use super::trajectory::frame_times;
 use crate::methods::MethodKind;
 use crate::model::{Point, Scene};
+use crate::plan::atlas::ATLAS_ANGLES;
 use crate::plan::pilot;
 use crate::plan::tolerance;
 use crate::run::simulate::{self, Options};
@@ -24,8 +25,8 @@ pub const REFERENCE_MARGIN: f64 = 0.1;
 /// The chosen run's CPU may be at most this many times the grid's cheapest.
 pub const CPU_FACTOR: f64 = 3.0;
 
-/// Release angles the check adds to the estimate check's scenes: between the release atlas's
-/// angles and its held-out ones, so that they test the atlas where it measured nothing.
+/// Release angles the check adds to the release atlas's: between its angles and its held-out
+/// ones, so that they test the atlas where it measured nothing.
 pub const UNSEEN_ANGLES: [f64; 2] = [37.0, 52.0];
 
 /// What to check.
@@ -45,21 +46,30 @@ pub struct CheckSpec {
 }
 
 impl Default for CheckSpec {
-    /// The issue's check: the six scenes of the estimate check and two releases that neither
-    /// the release atlas nor its held-out angles measure (37° and 52°), EPS = 1e-2, 1e-3 and
-    /// 1e-4 (each where the reference allows), to t = 3, against the chain extrapolated from
-    /// N/2, N and 2N with N from 200 up to 1600 (the whips need N = 1600: 3200 rods, two
-    /// minutes a scene), beside a grid up to N = 400.
+    /// The issue's check: the releases at every angle of the release atlas (0°, 10°, …, 90°)
+    /// and at two that neither the atlas nor its held-out angles measure (37° and 52°), and
+    /// modes 1 and 2 (tip amplitude 0.05); EPS = 1e-2, 1e-3 and 1e-4 (each where the
+    /// reference allows), to t = 3, against the reference method extrapolated from N/2, N and
+    /// 2N with N from 200 up to 3200 (a whip's reference reaches an own error of 1e-5, what
+    /// judges 1e-4, near N = 1600 from 20° to 40°, if at all elsewhere: 6400 rods, up to four
+    /// minutes a scene), beside a grid up to N = 800 (where the graded rods hold 1e-4 from
+    /// 30°).
     fn default() -> Self {
-        let mut scenes = super::estimate_check::CheckSpec::default().scenes;
-        scenes.extend(UNSEEN_ANGLES.map(|angle_deg| Scene::Release { angle_deg }));
+        let release = |angle_deg| Scene::Release { angle_deg };
+        let mode = |number| Scene::Mode {
+            number,
+            amplitude: 0.05,
+        };
+        let mut scenes: Vec<Scene> = ATLAS_ANGLES.map(release).to_vec();
+        scenes.extend(UNSEEN_ANGLES.map(release));
+        scenes.extend([mode(1), mode(2)]);
         Self {
             scenes,
             tolerances: vec![1e-2, 1e-3, 1e-4],
             duration: 3.0,
             reference_segments: 200,
-            reference_segments_max: 1600,
-            grid: vec![16, 25, 32, 50, 64, 100, 141, 200, 283, 400],
+            reference_segments_max: 3200,
+            grid: vec![16, 25, 32, 50, 64, 100, 141, 200, 283, 400, 566, 800],
         }
     }
 }
@@ -87,16 +97,18 @@ impl CheckSpec {
 
 /// The converged tip of one scene: the reference method at N and 2N, extrapolated in N at the
 /// order that the runs at N/2, N and 2N show.
+#[derive(Clone, Debug)]
 pub struct TipReference {
+    half: Trajectory,
     coarse: Trajectory,
     fine: Trajectory,
     /// N: the reference is made of the runs at N/2, N and 2N.
     pub segments: usize,
     /// The order observed from the three, between 1 (a whip) and 2 (the chain's nominal).
     pub order: f64,
-    /// The largest change of the extrapolated tip over the frames when it is made from N and
-    /// 2N rather than from N/2 and N: a bound on the coarser one's error, taken for this
-    /// one's (conservative where the extrapolation converges).
+    /// The largest change of the extrapolated tip over the frames ([`LOG_RATE`] a time unit)
+    /// when it is made from N and 2N rather than from N/2 and N: a bound on the coarser one's
+    /// error, taken for this one's (conservative where the extrapolation converges).
     pub own_error: f64,
 }
 
@@ -135,64 +147,103 @@ impl TipReference {
             .collect::<anyhow::Result<Vec<_>>>()?;
         let mut n = segments;
         loop {
-            let (fine, coarse, half) = match runs.as_slice() {
-                [.., half, coarse, fine] => (fine, coarse, half),
-                _ => anyhow::bail!("three reference runs expected"),
+            let (Some(fine), Some(coarse), Some(half)) = (runs.pop(), runs.pop(), runs.pop())
+            else {
+                anyhow::bail!("three reference runs expected");
             };
-            let (order, own_error) = order_and_own_error(half, coarse, fine, duration);
-            if own_error <= target || 2 * n > most {
-                let (Some(fine), Some(coarse)) = (runs.pop(), runs.pop()) else {
-                    anyhow::bail!("three reference runs expected");
-                };
-                return Ok(Self {
-                    coarse,
-                    fine,
-                    segments: n,
-                    order,
-                    own_error,
-                });
+            let reference = Self::of(half, coarse, fine, n, duration);
+            if reference.own_error <= target || 2 * n > most {
+                return Ok(reference);
             }
             n *= 2;
-            runs.remove(0);
-            runs.push(compute(2 * n)?);
+            let finer = compute(2 * n)?;
+            runs = vec![reference.coarse, reference.fine, finer];
         }
+    }
+
+    /// The reference from the runs at N/2, N and 2N (`half`, `coarse`, `fine`): the order the
+    /// three show at the frames, and its own error there.
+    fn of(
+        half: Trajectory,
+        coarse: Trajectory,
+        fine: Trajectory,
+        segments: usize,
+        duration: f64,
+    ) -> Self {
+        let frames = frame_times(duration, LOG_RATE);
+        let (step_coarse, step_fine) = (
+            coarse.largest_gap(&half, &frames),
+            fine.largest_gap(&coarse, &frames),
+        );
+        let order = if step_fine > 0.0 {
+            (step_coarse / step_fine).log2().clamp(1.0, 2.0)
+        } else {
+            2.0
+        };
+        let mut reference = Self {
+            half,
+            coarse,
+            fine,
+            segments,
+            order,
+            own_error: 0.0,
+        };
+        reference.own_error = reference.own_error_over(duration, LOG_RATE);
+        reference
     }
 
     /// The reference tip at time `t`.
     pub fn at(&self, t: f64) -> Point {
-        let (fine, coarse) = (self.fine.at(t), self.coarse.at(t));
-        fine + (fine - coarse) / (2f64.powf(self.order) - 1.0)
+        self.extrapolated(&self.fine, &self.coarse, t)
+    }
+
+    /// The tip at `t` extrapolated from `fine` and the run at half its N, `coarse`.
+    fn extrapolated(&self, fine: &Trajectory, coarse: &Trajectory, t: f64) -> Point {
+        let (f, c) = (fine.at(t), coarse.at(t));
+        f + (f - c) / (2f64.powf(self.order) - 1.0)
+    }
+
+    /// The reference's own error at `t`: how far its tip moves when it is made from N and 2N
+    /// rather than from N/2 and N.
+    pub fn own_error_at(&self, t: f64) -> f64 {
+        let coarser = self.extrapolated(&self.coarse, &self.half, t);
+        (self.at(t) - coarser).norm()
+    }
+
+    /// The largest own error at `rate` instants a time unit to `duration`: at the frames
+    /// ([`LOG_RATE`]) it is [`TipReference::own_error`]; finer, it also sees between them
+    /// (a whip's peak is brief).
+    pub fn own_error_over(&self, duration: f64, rate: f64) -> f64 {
+        frame_times(duration, rate)
+            .into_iter()
+            .map(|t| self.own_error_at(t))
+            .fold(0.0, f64::max)
     }
 }
 
-/// The order that the runs at N/2, N and 2N show at the frames, and the largest change of the
-/// extrapolated tip when it is made from N and 2N rather than from N/2 and N.
-fn order_and_own_error(
-    half: &Trajectory,
-    coarse: &Trajectory,
-    fine: &Trajectory,
+/// Instants a time unit at which `references.csv` gives each reference's tip and own error.
+pub const REFERENCE_RATE: f64 = 1000.0;
+
+/// `references.csv`: each scene's reference tip and its own error
+/// ([`TipReference::own_error_at`]) every 1/[`REFERENCE_RATE`] of a time unit to `duration`,
+/// for anyone to hold another solver against.
+pub fn write_references(
+    path: &std::path::Path,
+    scenes: &[Scene],
+    references: &[TipReference],
     duration: f64,
-) -> (f64, f64) {
-    let frames = frame_times(duration, LOG_RATE);
-    let (step_coarse, step_fine) = (
-        coarse.largest_gap(half, &frames),
-        fine.largest_gap(coarse, &frames),
-    );
-    let order = if step_fine > 0.0 {
-        (step_coarse / step_fine).log2().clamp(1.0, 2.0)
-    } else {
-        2.0
-    };
-    let extrapolated = |f: Point, c: Point| f + (f - c) / (2f64.powf(order) - 1.0);
-    let own_error = frames
-        .iter()
-        .map(|&t| {
-            let finer = extrapolated(fine.at(t), coarse.at(t));
-            let coarser = extrapolated(coarse.at(t), half.at(t));
-            (finer - coarser).norm()
-        })
-        .fold(0.0, f64::max);
-    (order, own_error)
+) -> std::io::Result<()> {
+    use std::io::Write as _;
+    let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
+    writeln!(out, "scene,t,tip_x,tip_y,own_error")?;
+    for (scene, reference) in scenes.iter().zip(references) {
+        for t in frame_times(duration, REFERENCE_RATE) {
+            let tip = reference.at(t);
+            let own = reference.own_error_at(t);
+            writeln!(out, "{scene},{t},{:.9},{:.9},{own:.1e}", tip.x, tip.y)?;
+        }
+    }
+    out.flush()
 }
 
 /// The steps the grid runs `method` at with N = `segments`: its default step, and its
@@ -313,6 +364,9 @@ pub struct ReferenceNote {
     pub order: f64,
     /// [`TipReference::own_error`].
     pub own_error: f64,
+    /// Its own error at every 1/[`REFERENCE_RATE`] of a time unit, between the frames too
+    /// ([`TipReference::own_error_over`]).
+    pub own_error_between: f64,
 }
 
 /// The whole check's outcome.
@@ -322,6 +376,8 @@ pub struct Checked {
     pub cells: Vec<Cell>,
     /// A note per scene.
     pub references: Vec<ReferenceNote>,
+    /// Each scene's reference, as [`CheckSpec::scenes`] lists them.
+    pub tips: Vec<TipReference>,
 }
 
 /// The whole check: a reference per scene (the scenes' in parallel), then each scene's grid
@@ -361,6 +417,7 @@ pub fn check(spec: &CheckSpec, tick: impl Fn() + Sync) -> anyhow::Result<Checked
             segments: r.segments,
             order: r.order,
             own_error: r.own_error,
+            own_error_between: r.own_error_over(spec.duration, REFERENCE_RATE),
         })
         .collect();
     for (scene, reference) in spec.scenes.iter().zip(&scene_references) {
@@ -417,7 +474,11 @@ pub fn check(spec: &CheckSpec, tick: impl Fn() + Sync) -> anyhow::Result<Checked
             cells.push(cell);
         }
     }
-    Ok(Checked { cells, references })
+    Ok(Checked {
+        cells,
+        references,
+        tips: scene_references,
+    })
 }
 
 /// The check as Markdown: the references, then a row per scene and tolerance.
@@ -433,9 +494,14 @@ pub fn markdown(spec: &CheckSpec, checked: &Checked, command: &str) -> String {
          CPU (one thread, pilots included) is set beside the cheapest run of the grid (every \
          method that can start, at N = {:?}, each at its default step and at its tolerance step \
          where that is another, without a shadow) whose largest error also holds EPS. A \
-         tolerance is checked only where the reference's own error is at most \
+         tolerance is checked only where the reference's own error at the frames is at most \
          {REFERENCE_MARGIN} × EPS.\n\n## References\n\n\
-         | scene | method | N (runs at N/2, N, 2N) | observed order | own error |\n|---|---|---|---|---|\n",
+         Each reference's own error is measured: how far its tip moves when it is extrapolated \
+         from N and 2N rather than from N/2 and N, at the frames the choices are judged at, and \
+         at every 1/{REFERENCE_RATE} of a time unit, which also sees between them (a whip's \
+         peak is brief). `references.csv` gives each reference's tip and own error at every \
+         1/{REFERENCE_RATE}.\n\n\
+         | scene | method | N (runs at N/2, N, 2N) | observed order | own error at the frames | at every 1/{REFERENCE_RATE} |\n|---|---|---|---|---|---|\n",
         spec.duration,
         MethodKind::REFERENCE,
         spec.reference_segments,
@@ -444,8 +510,8 @@ pub fn markdown(spec: &CheckSpec, checked: &Checked, command: &str) -> String {
     );
     for r in &checked.references {
         text += &format!(
-            "| {} | {} | {} | {:.2} | {:.1e} |\n",
-            r.scene, r.method, r.segments, r.order, r.own_error
+            "| {} | {} | {} | {:.2} | {:.1e} | {:.1e} |\n",
+            r.scene, r.method, r.segments, r.order, r.own_error, r.own_error_between
         );
     }
     text += "\n## Choices\n\n| scene | EPS | chosen (from) | true worst error | held | CPU s (pilots + run) | grid's cheapest holding EPS | its worst error | its CPU s | ratio | notes |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
@@ -480,4 +546,76 @@ pub fn markdown(spec: &CheckSpec, checked: &Checked, command: &str) -> String {
         );
     }
     text
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A path and the runs that err from it by `C(t)/N^1.5`, kept every 1/1000.
+    fn runs_around(path: fn(f64) -> Point) -> [Trajectory; 3] {
+        let dt = 1e-3;
+        [100usize, 200, 400].map(|n| {
+            let tips = (0..=3002)
+                .map(|i| {
+                    let t = i as f64 * dt;
+                    let error = Point::new(t * t, t).coords * 0.1 / (n as f64).powf(1.5);
+                    path(t) + error
+                })
+                .collect();
+            Trajectory::new(dt, tips)
+        })
+    }
+
+    #[test]
+    fn a_reference_finds_the_order_its_runs_converge_at_and_recovers_their_limit() {
+        let path = |t: f64| Point::new(t.sin(), -t.cos());
+        let [half, coarse, fine] = runs_around(path);
+        let reference = TipReference::of(half, coarse, fine, 200, 3.0);
+        assert!((reference.order - 1.5).abs() < 1e-6, "{}", reference.order);
+        for t in [0.0, 0.4321, 1.5, 2.999] {
+            assert!((reference.at(t) - path(t)).norm() < 1e-9, "t = {t}");
+        }
+        // The extrapolations from N, 2N and from N/2, N agree: its own error is round-off.
+        assert!(reference.own_error < 1e-9);
+        assert!(reference.own_error_over(3.0, REFERENCE_RATE) < 1e-9);
+    }
+
+    #[test]
+    fn its_own_error_between_the_frames_sees_what_the_frames_miss() {
+        // A brief peak between two frames (1/60 apart): a whip the runs resolve differently.
+        let peak = |t: f64| (-((t - 1.0 / 120.0) * 2000.0).powi(2)).exp();
+        let [mut half, coarse, fine] = runs_around(|t| Point::new(t, 0.0));
+        let tips = half
+            .tips()
+            .iter()
+            .enumerate()
+            .map(|(i, p)| p + Point::new(0.0, 1e-3 * peak(i as f64 * 1e-3)).coords)
+            .collect();
+        half = Trajectory::new(1e-3, tips);
+        let reference = TipReference::of(half, coarse, fine, 200, 3.0);
+        let between = reference.own_error_over(3.0, REFERENCE_RATE);
+        assert!(reference.own_error < 1e-6, "{}", reference.own_error);
+        assert!(between > 1e-4, "{between}");
+    }
+
+    #[test]
+    fn the_references_file_gives_each_tip_and_own_error_every_thousandth() {
+        let [half, coarse, fine] = runs_around(|t| Point::new(t.cos(), t.sin()));
+        let reference = TipReference::of(half, coarse, fine, 200, 3.0);
+        let scenes = [Scene::Release { angle_deg: 30.0 }];
+        let path = std::env::temp_dir().join(format!("rope-refs-{}.csv", std::process::id()));
+        write_references(&path, &scenes, std::slice::from_ref(&reference), 3.0).unwrap();
+        let text = std::fs::read_to_string(&path).unwrap();
+        std::fs::remove_file(&path).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines[0], "scene,t,tip_x,tip_y,own_error");
+        assert_eq!(lines.len(), 1 + 3001);
+        let fields: Vec<&str> = lines[1235].split(',').collect();
+        assert_eq!(fields[0], scenes[0].to_string());
+        let t: f64 = fields[1].parse().unwrap();
+        assert!((t - 1.234).abs() < 1e-12);
+        let x: f64 = fields[2].parse().unwrap();
+        assert!((x - t.cos()).abs() < 1e-8, "{x}");
+    }
 }
