@@ -19,7 +19,8 @@ use rayon::prelude::*;
 use rope::methods::MethodKind;
 use rope::model::Scene;
 use rope::plan::atlas::{ATLAS_ANGLES, GRADED_FROM, HELD_OUT_ANGLES, SEGMENTS, WINDOW};
-use rope::study::tolerance_check::{TipReference, measure};
+use rope::study::tip_reference::TipReference;
+use rope::study::tolerance_check::measure;
 
 /// The reference's N: runs at N/2, N and 2N.
 const REFERENCE_SEGMENTS: usize = 1600;

@@ -8,7 +8,8 @@
 use rope::methods::MethodKind;
 use rope::model::Scene;
 use rope::plan::tolerance;
-use rope::study::tolerance_check::{TipReference, measure};
+use rope::study::tip_reference::TipReference;
+use rope::study::tolerance_check::measure;
 
 /// The worst distance of the tip from the reference's over the frames (NaN if the run could
 /// not start or diverged).

@@ -8,7 +8,7 @@ use rope::methods::MethodKind;
 use rope::model::{Point, Scene};
 use rope::plan::pilot;
 use rope::plan::tolerance;
-use rope::study::tolerance_check::TipReference;
+use rope::study::tip_reference::TipReference;
 
 /// The largest distance, over a run's summary's tip samples, from the reference's tip.
 fn worst_tip_error(samples: &serde_json::Value, reference: impl Fn(f64) -> Point) -> f64 {

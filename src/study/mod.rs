@@ -31,6 +31,7 @@ pub mod reference;
 pub mod report;
 pub mod shard;
 pub mod sweep_chart;
+pub mod tip_reference;
 pub mod tolerance_chart;
 pub mod tolerance_check;
 pub mod trajectory;
@@ -337,7 +338,7 @@ pub fn execute_tolerance_check(
     use anyhow::Context as _;
     let checked = tolerance_check::check(spec, tick)?;
     let csv = out.join("references.csv");
-    tolerance_check::write_references(&csv, &spec.scenes, &checked.tips, spec.duration)
+    tip_reference::write_references(&csv, &spec.scenes, &checked.tips, spec.duration)
         .with_context(|| format!("writing {}", csv.display()))?;
     let markdown = tolerance_check::markdown(spec, &checked, command);
     write(&out.join("tolerance_check.md"), &markdown)?;

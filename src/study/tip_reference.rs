@@ -1,0 +1,236 @@
+//! The converged tip of a scene that `rope study --tolerance-check` and the release atlas
+//! judge runs against: a method's runs at N/2, N and 2N, extrapolated in N at the order they
+//! show, with its own error measured at the frames and between them, and written out for
+//! anyone to hold another solver against (`references.csv`).
+
+use super::trajectory::{Trajectory, frame_times};
+use crate::methods::MethodKind;
+use crate::model::{Point, Scene};
+use rayon::prelude::*;
+
+/// Frames per time unit at which a run's tip is compared with the reference: a run's frames,
+/// where a reference's own error is first measured.
+pub const LOG_RATE: f64 = 60.0;
+
+/// The converged tip of one scene: the reference method at N and 2N, extrapolated in N at the
+/// order that the runs at N/2, N and 2N show.
+#[derive(Clone, Debug)]
+pub struct TipReference {
+    half: Trajectory,
+    coarse: Trajectory,
+    fine: Trajectory,
+    /// N: the reference is made of the runs at N/2, N and 2N.
+    pub segments: usize,
+    /// The order observed from the three, between 1 (a whip) and 2 (the chain's nominal).
+    pub order: f64,
+    /// The largest change of the extrapolated tip over the frames ([`LOG_RATE`] a time unit)
+    /// when it is made from N and 2N rather than from N/2 and N: a bound on the coarser one's
+    /// error, taken for this one's (conservative where the extrapolation converges).
+    pub own_error: f64,
+}
+
+impl TipReference {
+    /// The reference from the runs at N/2, N and 2N (computed in parallel).
+    pub fn compute(scene: &Scene, segments: usize, duration: f64) -> anyhow::Result<Self> {
+        Self::compute_by(MethodKind::REFERENCE, scene, segments, duration)
+    }
+
+    /// As [`TipReference::compute`], of `method`'s runs at their default steps (the graded
+    /// rods', whose tip converges faster through the whip).
+    pub fn compute_by(
+        method: MethodKind,
+        scene: &Scene,
+        segments: usize,
+        duration: f64,
+    ) -> anyhow::Result<Self> {
+        Self::refined_by(method, scene, segments, segments, 0.0, duration)
+    }
+
+    /// The reference of `method`'s runs from N = `segments` (with N/2 and 2N), N then doubled
+    /// while its own error is above `target` and N is below `most`: each doubling one more
+    /// run, at 2N.
+    pub fn refined_by(
+        method: MethodKind,
+        scene: &Scene,
+        segments: usize,
+        most: usize,
+        target: f64,
+        duration: f64,
+    ) -> anyhow::Result<Self> {
+        let compute = |n| Trajectory::compute_by(method, scene, n, duration);
+        let mut runs = [segments / 2, segments, 2 * segments]
+            .into_par_iter()
+            .map(compute)
+            .collect::<anyhow::Result<Vec<_>>>()?;
+        let mut n = segments;
+        loop {
+            let (Some(fine), Some(coarse), Some(half)) = (runs.pop(), runs.pop(), runs.pop())
+            else {
+                anyhow::bail!("three reference runs expected");
+            };
+            let reference = Self::of(half, coarse, fine, n, duration);
+            if reference.own_error <= target || 2 * n > most {
+                return Ok(reference);
+            }
+            n *= 2;
+            let finer = compute(2 * n)?;
+            runs = vec![reference.coarse, reference.fine, finer];
+        }
+    }
+
+    /// The reference from the runs at N/2, N and 2N (`half`, `coarse`, `fine`): the order the
+    /// three show at the frames, and its own error there.
+    fn of(
+        half: Trajectory,
+        coarse: Trajectory,
+        fine: Trajectory,
+        segments: usize,
+        duration: f64,
+    ) -> Self {
+        let frames = frame_times(duration, LOG_RATE);
+        let (step_coarse, step_fine) = (
+            coarse.largest_gap(&half, &frames),
+            fine.largest_gap(&coarse, &frames),
+        );
+        let order = if step_fine > 0.0 {
+            (step_coarse / step_fine).log2().clamp(1.0, 2.0)
+        } else {
+            2.0
+        };
+        let mut reference = Self {
+            half,
+            coarse,
+            fine,
+            segments,
+            order,
+            own_error: 0.0,
+        };
+        reference.own_error = reference.own_error_over(duration, LOG_RATE);
+        reference
+    }
+
+    /// The reference tip at time `t`.
+    pub fn at(&self, t: f64) -> Point {
+        self.extrapolated(&self.fine, &self.coarse, t)
+    }
+
+    /// The tip at `t` extrapolated from `fine` and the run at half its N, `coarse`.
+    fn extrapolated(&self, fine: &Trajectory, coarse: &Trajectory, t: f64) -> Point {
+        let (f, c) = (fine.at(t), coarse.at(t));
+        f + (f - c) / (2f64.powf(self.order) - 1.0)
+    }
+
+    /// The reference's own error at `t`: how far its tip moves when it is made from N and 2N
+    /// rather than from N/2 and N.
+    pub fn own_error_at(&self, t: f64) -> f64 {
+        let coarser = self.extrapolated(&self.coarse, &self.half, t);
+        (self.at(t) - coarser).norm()
+    }
+
+    /// The largest own error at `rate` instants a time unit to `duration`: at the frames
+    /// ([`LOG_RATE`]) it is [`TipReference::own_error`]; finer, it also sees between them
+    /// (a whip's peak is brief).
+    pub fn own_error_over(&self, duration: f64, rate: f64) -> f64 {
+        frame_times(duration, rate)
+            .into_iter()
+            .map(|t| self.own_error_at(t))
+            .fold(0.0, f64::max)
+    }
+}
+
+/// Instants a time unit at which `references.csv` gives each reference's tip and own error.
+pub const REFERENCE_RATE: f64 = 1000.0;
+
+/// `references.csv`: each scene's reference tip and its own error
+/// ([`TipReference::own_error_at`]) every 1/[`REFERENCE_RATE`] of a time unit to `duration`,
+/// for anyone to hold another solver against.
+pub fn write_references(
+    path: &std::path::Path,
+    scenes: &[Scene],
+    references: &[TipReference],
+    duration: f64,
+) -> std::io::Result<()> {
+    use std::io::Write as _;
+    let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
+    writeln!(out, "scene,t,tip_x,tip_y,own_error")?;
+    for (scene, reference) in scenes.iter().zip(references) {
+        for t in frame_times(duration, REFERENCE_RATE) {
+            let tip = reference.at(t);
+            let own = reference.own_error_at(t);
+            writeln!(out, "{scene},{t},{:.9},{:.9},{own:.1e}", tip.x, tip.y)?;
+        }
+    }
+    out.flush()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A path and the runs that err from it by `C(t)/N^1.5`, kept every 1/1000.
+    fn runs_around(path: fn(f64) -> Point) -> [Trajectory; 3] {
+        let dt = 1e-3;
+        [100usize, 200, 400].map(|n| {
+            let tips = (0..=3002)
+                .map(|i| {
+                    let t = i as f64 * dt;
+                    let error = Point::new(t * t, t).coords * 0.1 / (n as f64).powf(1.5);
+                    path(t) + error
+                })
+                .collect();
+            Trajectory::new(dt, tips)
+        })
+    }
+
+    #[test]
+    fn a_reference_finds_the_order_its_runs_converge_at_and_recovers_their_limit() {
+        let path = |t: f64| Point::new(t.sin(), -t.cos());
+        let [half, coarse, fine] = runs_around(path);
+        let reference = TipReference::of(half, coarse, fine, 200, 3.0);
+        assert!((reference.order - 1.5).abs() < 1e-6, "{}", reference.order);
+        for t in [0.0, 0.4321, 1.5, 2.999] {
+            assert!((reference.at(t) - path(t)).norm() < 1e-9, "t = {t}");
+        }
+        // The extrapolations from N, 2N and from N/2, N agree: its own error is round-off.
+        assert!(reference.own_error < 1e-9);
+        assert!(reference.own_error_over(3.0, REFERENCE_RATE) < 1e-9);
+    }
+
+    #[test]
+    fn its_own_error_between_the_frames_sees_what_the_frames_miss() {
+        // A brief peak between two frames (1/60 apart): a whip the runs resolve differently.
+        let peak = |t: f64| (-((t - 1.0 / 120.0) * 2000.0).powi(2)).exp();
+        let [mut half, coarse, fine] = runs_around(|t| Point::new(t, 0.0));
+        let tips = half
+            .tips()
+            .iter()
+            .enumerate()
+            .map(|(i, p)| p + Point::new(0.0, 1e-3 * peak(i as f64 * 1e-3)).coords)
+            .collect();
+        half = Trajectory::new(1e-3, tips);
+        let reference = TipReference::of(half, coarse, fine, 200, 3.0);
+        let between = reference.own_error_over(3.0, REFERENCE_RATE);
+        assert!(reference.own_error < 1e-6, "{}", reference.own_error);
+        assert!(between > 1e-4, "{between}");
+    }
+
+    #[test]
+    fn the_references_file_gives_each_tip_and_own_error_every_thousandth() {
+        let [half, coarse, fine] = runs_around(|t| Point::new(t.cos(), t.sin()));
+        let reference = TipReference::of(half, coarse, fine, 200, 3.0);
+        let scenes = [Scene::Release { angle_deg: 30.0 }];
+        let path = std::env::temp_dir().join(format!("rope-refs-{}.csv", std::process::id()));
+        write_references(&path, &scenes, std::slice::from_ref(&reference), 3.0).unwrap();
+        let text = std::fs::read_to_string(&path).unwrap();
+        std::fs::remove_file(&path).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines[0], "scene,t,tip_x,tip_y,own_error");
+        assert_eq!(lines.len(), 1 + 3001);
+        let fields: Vec<&str> = lines[1235].split(',').collect();
+        assert_eq!(fields[0], scenes[0].to_string());
+        let t: f64 = fields[1].parse().unwrap();
+        assert!((t - 1.234).abs() < 1e-12);
+        let x: f64 = fields[2].parse().unwrap();
+        assert!((x - t.cos()).abs() < 1e-8, "{x}");
+    }
+}
