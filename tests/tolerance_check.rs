@@ -57,3 +57,58 @@ fn the_quick_tolerance_check_holds_eps_against_a_converged_reference_in_each_sce
         assert!(cheapest.worst <= eps);
     }
 }
+
+/// The committed `assets/tolerance-check/references.csv` (written by the full check): every
+/// scene of the check, its tip every 1/1000 to t = 3, held to what the physics of the string
+/// says, whatever the extrapolation did.
+#[test]
+fn the_committed_references_obey_the_physics_of_the_string() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/tolerance-check/references.csv"
+    );
+    let text = std::fs::read_to_string(path).expect("the committed references");
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("scene,t,tip_x,tip_y,own_error"));
+    let rows: Vec<(String, [f64; 4])> = lines
+        .map(|line| {
+            let fields: Vec<&str> = line.split(',').collect();
+            let number = |i: usize| fields[i].parse::<f64>().unwrap();
+            (
+                fields[0].to_owned(),
+                [number(1), number(2), number(3), number(4)],
+            )
+        })
+        .collect();
+    let spec = CheckSpec::default();
+    let per_scene = 3001;
+    assert_eq!(rows.len(), spec.scenes.len() * per_scene);
+    for (scene, rows) in spec.scenes.iter().zip(rows.chunks(per_scene)) {
+        for (j, (name, [t, x, y, own])) in rows.iter().enumerate() {
+            assert_eq!(*name, scene.to_string());
+            assert!((t - j as f64 / 1000.0).abs() < 1e-12, "{scene}: t = {t}");
+            assert!(*own >= 0.0);
+            // Inextensible: the tip is never farther from the support than the string is long
+            // (an extrapolated point may stray outside by its own error; the file rounds to
+            // 1e-9).
+            assert!(
+                x.hypot(*y) <= 1.0 + own + 1e-9,
+                "{scene}: t = {t}, |tip| = {}",
+                x.hypot(*y)
+            );
+            match *scene {
+                // Until the bend reaches it, the tip of a release falls freely across its
+                // initial line (exact for the rods, and for any extrapolation of them).
+                Scene::Release { .. } if *t <= rope::run::summary::FREE_FALL_UNTIL => {
+                    let gap = scene.free_fall_gap(*t, *x, *y).unwrap();
+                    assert!(gap < 2e-9, "{scene}: t = {t}, off free fall by {gap:e}");
+                }
+                // A small mode is a standing wave: its tip swings no wider than it was set.
+                Scene::Mode { amplitude, .. } => {
+                    assert!(x.abs() <= 1.01 * amplitude, "{scene}: t = {t}, x = {x}");
+                }
+                _ => {}
+            }
+        }
+    }
+}
