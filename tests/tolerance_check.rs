@@ -26,8 +26,9 @@ fn the_quick_tolerance_check_holds_eps_against_a_converged_reference_in_each_sce
     // Each reference starts where its scene does (y down): a release's tip at (cos θ, sin θ),
     // where every run starts too (its own error there is nil), a mode's hanging nearly
     // straight down.
-    assert_eq!(checked.tips.len(), spec.scenes.len());
-    for (scene, tip) in spec.scenes.iter().zip(&checked.tips) {
+    assert_eq!(checked.references.len(), spec.scenes.len());
+    for (scene, tip) in spec.scenes.iter().zip(&checked.references) {
+        assert_eq!(tip.scene, *scene);
         let start = tip.at(0.0);
         if let Scene::Release { angle_deg } = *scene {
             let angle = angle_deg.to_radians();

@@ -338,7 +338,7 @@ pub fn execute_tolerance_check(
     use anyhow::Context as _;
     let checked = tolerance_check::check(spec, tick)?;
     let csv = out.join("references.csv");
-    tip_reference::write_references(&csv, &spec.scenes, &checked.tips, spec.duration)
+    tip_reference::write_references(&csv, &checked.references, spec.duration)
         .with_context(|| format!("writing {}", csv.display()))?;
     let markdown = tolerance_check::markdown(spec, &checked, command);
     write(&out.join("tolerance_check.md"), &markdown)?;

@@ -16,6 +16,10 @@ pub const LOG_RATE: f64 = 60.0;
 /// order that the runs at N/2, N and 2N show.
 #[derive(Clone, Debug)]
 pub struct TipReference {
+    /// The scene it is the reference of.
+    pub scene: Scene,
+    /// The method whose runs make it.
+    pub method: MethodKind,
     half: Trajectory,
     coarse: Trajectory,
     fine: Trajectory,
@@ -68,7 +72,7 @@ impl TipReference {
             else {
                 anyhow::bail!("three reference runs expected");
             };
-            let reference = Self::of(half, coarse, fine, n, duration);
+            let reference = Self::of(method, *scene, half, coarse, fine, n, duration);
             if reference.own_error <= target || 2 * n > most {
                 return Ok(reference);
             }
@@ -78,9 +82,11 @@ impl TipReference {
         }
     }
 
-    /// The reference from the runs at N/2, N and 2N (`half`, `coarse`, `fine`): the order the
-    /// three show at the frames, and its own error there.
+    /// The reference of `method`'s runs from `scene` at N/2, N and 2N (`half`, `coarse`,
+    /// `fine`): the order the three show at the frames, and its own error there.
     fn of(
+        method: MethodKind,
+        scene: Scene,
         half: Trajectory,
         coarse: Trajectory,
         fine: Trajectory,
@@ -98,6 +104,8 @@ impl TipReference {
             2.0
         };
         let mut reference = Self {
+            scene,
+            method,
             half,
             coarse,
             fine,
@@ -141,19 +149,19 @@ impl TipReference {
 /// Instants a time unit at which `references.csv` gives each reference's tip and own error.
 pub const REFERENCE_RATE: f64 = 1000.0;
 
-/// `references.csv`: each scene's reference tip and its own error
-/// ([`TipReference::own_error_at`]) every 1/[`REFERENCE_RATE`] of a time unit to `duration`,
-/// for anyone to hold another solver against.
+/// `references.csv`: each reference's tip and its own error ([`TipReference::own_error_at`])
+/// every 1/[`REFERENCE_RATE`] of a time unit to `duration`, for anyone to hold another solver
+/// against.
 pub fn write_references(
     path: &std::path::Path,
-    scenes: &[Scene],
     references: &[TipReference],
     duration: f64,
 ) -> std::io::Result<()> {
     use std::io::Write as _;
     let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
     writeln!(out, "scene,t,tip_x,tip_y,own_error")?;
-    for (scene, reference) in scenes.iter().zip(references) {
+    for reference in references {
+        let scene = reference.scene;
         for t in frame_times(duration, REFERENCE_RATE) {
             let tip = reference.at(t);
             let own = reference.own_error_at(t);
@@ -166,6 +174,10 @@ pub fn write_references(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// What the synthetic runs below stand for.
+    const METHOD: MethodKind = MethodKind::Chain;
+    const SCENE: Scene = Scene::Release { angle_deg: 30.0 };
 
     /// A path and the runs that err from it by `C(t)/N^1.5`, kept every 1/1000.
     fn runs_around(path: fn(f64) -> Point) -> [Trajectory; 3] {
@@ -186,7 +198,7 @@ mod tests {
     fn a_reference_finds_the_order_its_runs_converge_at_and_recovers_their_limit() {
         let path = |t: f64| Point::new(t.sin(), -t.cos());
         let [half, coarse, fine] = runs_around(path);
-        let reference = TipReference::of(half, coarse, fine, 200, 3.0);
+        let reference = TipReference::of(METHOD, SCENE, half, coarse, fine, 200, 3.0);
         assert!((reference.order - 1.5).abs() < 1e-6, "{}", reference.order);
         for t in [0.0, 0.4321, 1.5, 2.999] {
             assert!((reference.at(t) - path(t)).norm() < 1e-9, "t = {t}");
@@ -208,7 +220,7 @@ mod tests {
             .map(|(i, p)| p + Point::new(0.0, 1e-3 * peak(i as f64 * 1e-3)).coords)
             .collect();
         half = Trajectory::new(1e-3, tips);
-        let reference = TipReference::of(half, coarse, fine, 200, 3.0);
+        let reference = TipReference::of(METHOD, SCENE, half, coarse, fine, 200, 3.0);
         let between = reference.own_error_over(3.0, REFERENCE_RATE);
         assert!(reference.own_error < 1e-6, "{}", reference.own_error);
         assert!(between > 1e-4, "{between}");
@@ -217,17 +229,16 @@ mod tests {
     #[test]
     fn the_references_file_gives_each_tip_and_own_error_every_thousandth() {
         let [half, coarse, fine] = runs_around(|t| Point::new(t.cos(), t.sin()));
-        let reference = TipReference::of(half, coarse, fine, 200, 3.0);
-        let scenes = [Scene::Release { angle_deg: 30.0 }];
+        let reference = TipReference::of(METHOD, SCENE, half, coarse, fine, 200, 3.0);
         let path = std::env::temp_dir().join(format!("rope-refs-{}.csv", std::process::id()));
-        write_references(&path, &scenes, std::slice::from_ref(&reference), 3.0).unwrap();
+        write_references(&path, std::slice::from_ref(&reference), 3.0).unwrap();
         let text = std::fs::read_to_string(&path).unwrap();
         std::fs::remove_file(&path).unwrap();
         let lines: Vec<&str> = text.lines().collect();
         assert_eq!(lines[0], "scene,t,tip_x,tip_y,own_error");
         assert_eq!(lines.len(), 1 + 3001);
         let fields: Vec<&str> = lines[1235].split(',').collect();
-        assert_eq!(fields[0], scenes[0].to_string());
+        assert_eq!(fields[0], SCENE.to_string());
         let t: f64 = fields[1].parse().unwrap();
         assert!((t - 1.234).abs() < 1e-12);
         let x: f64 = fields[2].parse().unwrap();

@@ -198,32 +198,13 @@ pub fn reference_method(scene: &Scene) -> MethodKind {
     }
 }
 
-/// What one scene's reference showed of itself.
-#[derive(Clone, Copy, Debug)]
-pub struct ReferenceNote {
-    pub scene: Scene,
-    /// The method whose runs make it ([`reference_method`]).
-    pub method: MethodKind,
-    /// [`TipReference::segments`].
-    pub segments: usize,
-    /// The order of the reference method's convergence in N there.
-    pub order: f64,
-    /// [`TipReference::own_error`].
-    pub own_error: f64,
-    /// Its own error at every 1/[`REFERENCE_RATE`] of a time unit, between the frames too
-    /// ([`TipReference::own_error_over`]).
-    pub own_error_between: f64,
-}
-
 /// The whole check's outcome.
 #[derive(Clone, Debug)]
 pub struct Checked {
     /// A cell per scene and tolerance.
     pub cells: Vec<Cell>,
-    /// A note per scene.
-    pub references: Vec<ReferenceNote>,
     /// Each scene's reference, as [`CheckSpec::scenes`] lists them.
-    pub tips: Vec<TipReference>,
+    pub references: Vec<TipReference>,
 }
 
 /// The whole check: a reference per scene (the scenes' in parallel), then each scene's grid
@@ -237,7 +218,7 @@ pub fn check(spec: &CheckSpec, tick: impl Fn() + Sync) -> anyhow::Result<Checked
         .copied()
         .fold(f64::INFINITY, f64::min);
     // The references first, the scenes' in parallel: no CPU is measured while they run.
-    let scene_references = spec
+    let references = spec
         .scenes
         .par_iter()
         .map(|scene| {
@@ -253,20 +234,8 @@ pub fn check(spec: &CheckSpec, tick: impl Fn() + Sync) -> anyhow::Result<Checked
             reference
         })
         .collect::<anyhow::Result<Vec<_>>>()?;
-    let references = spec
-        .scenes
-        .iter()
-        .zip(&scene_references)
-        .map(|(scene, r)| ReferenceNote {
-            scene: *scene,
-            method: reference_method(scene),
-            segments: r.segments,
-            order: r.order,
-            own_error: r.own_error,
-            own_error_between: r.own_error_over(spec.duration, REFERENCE_RATE),
-        })
-        .collect();
-    for (scene, reference) in spec.scenes.iter().zip(&scene_references) {
+    for reference in &references {
+        let scene = &reference.scene;
         // Each method up the grid until it holds the smallest EPS: a finer run could only
         // cost more.
         let mut grid: Vec<Measured> = Vec::new();
@@ -320,11 +289,7 @@ pub fn check(spec: &CheckSpec, tick: impl Fn() + Sync) -> anyhow::Result<Checked
             cells.push(cell);
         }
     }
-    Ok(Checked {
-        cells,
-        references,
-        tips: scene_references,
-    })
+    Ok(Checked { cells, references })
 }
 
 /// The check as Markdown: the references, then a row per scene and tolerance.
@@ -357,7 +322,12 @@ pub fn markdown(spec: &CheckSpec, checked: &Checked, command: &str) -> String {
     for r in &checked.references {
         text += &format!(
             "| {} | {} | {} | {:.2} | {:.1e} | {:.1e} |\n",
-            r.scene, r.method, r.segments, r.order, r.own_error, r.own_error_between
+            r.scene,
+            r.method,
+            r.segments,
+            r.order,
+            r.own_error,
+            r.own_error_over(spec.duration, REFERENCE_RATE)
         );
     }
     text += "\n## Choices\n\n| scene | EPS | chosen (from) | true worst error | held | CPU s (pilots + run) | grid's cheapest holding EPS | its worst error | its CPU s | ratio | notes |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
