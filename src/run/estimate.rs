@@ -34,7 +34,7 @@ pub struct Shadow {
     /// Why the shadow stopped, if it did: the estimates end there.
     lost: Option<Diverged>,
     nodes: Vec<Point>,
-    /// The shadow's nodes' arc lengths.
+    /// The shadow's nodes' arc lengths (fixed: its rods keep their lengths).
     edges: Vec<f64>,
 }
 
@@ -65,13 +65,16 @@ impl Shadow {
         let shadow = method.build(scene, half, dt * STRIDE as f64)?;
         let ratio = segments as f64 / half as f64;
         let order = method.descriptor().order_in_h;
+        // Its rods' lengths never change, nor therefore where its nodes sit along it.
+        let mut edges = Vec::with_capacity(half + 1);
+        geometry::edges(half, shadow.lengths(), &mut edges);
         Ok(Some(Self {
             energy_reference: reference_energy(shadow.as_ref()),
             method: shadow,
             richardson: 1.0 / (ratio.powi(order as i32) - 1.0),
             lost: None,
             nodes: Vec::with_capacity(half + 1),
-            edges: Vec::with_capacity(half + 1),
+            edges,
         }))
     }
 
@@ -112,13 +115,11 @@ impl Shadow {
             });
             return None;
         }
-        let lengths = self.method.lengths();
-        geometry::nodes_of(self.method.angles(), lengths, &mut self.nodes);
+        geometry::nodes_of(self.method.angles(), self.method.lengths(), &mut self.nodes);
         // In the room, as the run's nodes are.
         crate::model::support::into_the_room(self.method.support(), &mut self.nodes);
         let tip = nodes.last().copied().unwrap_or_else(Point::origin);
         let shadow_tip = self.nodes.last().copied().unwrap_or_else(Point::origin);
-        geometry::edges(self.nodes.len() - 1, lengths, &mut self.edges);
         let shape = geometry::largest_distance_at(&self.nodes, &self.edges, nodes, edges);
         Some(ErrorEstimate {
             tip: (tip - shadow_tip).norm() * self.richardson,
