@@ -718,11 +718,7 @@ fn run_connected_to(port: u16, more: &[&str]) -> std::process::Output {
 #[test]
 fn a_refused_connection_is_reported_at_once_before_anything_runs() {
     // A free port on this machine with nothing listening: the connection is refused.
-    let port = std::net::TcpListener::bind("127.0.0.1:0")
-        .unwrap()
-        .local_addr()
-        .unwrap()
-        .port();
+    let port = common::cli::free_port();
     let dir = Scratch::new("refused");
     let json = dir.path("s.json");
     let started = Instant::now();

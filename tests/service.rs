@@ -6,8 +6,8 @@
 mod common;
 
 use common::cli::{
-    Recording, Scratch, free_pair, free_port, rope, signal, signal_and_wait, start,
-    stderr_lines_until, stderr_of, summary, wait_for,
+    Recording, Scratch, free_pair, rope, signal, signal_and_wait, start, stderr_lines_until,
+    stderr_of, summary, wait_for,
 };
 use rerun::external::re_grpc_client;
 use rope::recording::live::HistoryRates;
@@ -216,7 +216,7 @@ fn an_endless_served_run_gives_a_late_viewer_its_history_and_a_live_picture() {
 /// picked, the endpoint cannot listen there and another port is tried.
 fn endpoint() -> (Child, u16) {
     for _ in 0..5 {
-        let port = free_port();
+        let port = free_pair();
         let mut endpoint = start(&[
             "run",
             "--duration",

@@ -30,7 +30,7 @@ fn get(port: u16, path: &str) -> (String, usize) {
 
 #[test]
 fn the_web_viewer_page_and_its_wasm_are_served_while_the_run_streams() {
-    let (web, grpc) = (common::cli::free_port(), common::cli::free_port());
+    let (web, grpc) = (common::cli::free_port(), common::cli::free_pair());
     let mut run = start(&[
         "run",
         "--web",
@@ -67,7 +67,7 @@ fn the_web_viewer_page_and_its_wasm_are_served_while_the_run_streams() {
 fn a_web_address_already_taken_is_refused_naming_it() {
     let taken = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
     let port = taken.local_addr().unwrap().port();
-    let grpc = common::cli::free_port();
+    let grpc = common::cli::free_pair();
     let out = common::cli::rope(&[
         "run",
         "--web",

@@ -263,24 +263,49 @@ pub fn signal_and_wait(child: &mut Child, sig: &str, limit: Duration) -> (ExitSt
     (status, sent.elapsed())
 }
 
-/// A port on 127.0.0.1 that nothing listens on (just now).
+/// A port on 127.0.0.1 that nothing listens on (just now), and that no other test of this
+/// process has been given. A port for `--serve-grpc` takes [`free_pair`]: `rope` serves its
+/// live picture on the next one.
 pub fn free_port() -> u16 {
-    std::net::TcpListener::bind("127.0.0.1:0")
-        .and_then(|l| l.local_addr())
-        .expect("a free port")
-        .port()
+    free_ports(1)
 }
 
 /// A free port whose next port is free too: a served run's history endpoint and its live
 /// picture's.
 pub fn free_pair() -> u16 {
-    for _ in 0..100 {
-        let port = free_port();
-        if std::net::TcpListener::bind(("127.0.0.1", port + 1)).is_ok() {
+    free_ports(2)
+}
+
+/// The first of `count` consecutive ports on 127.0.0.1 that nothing listens on and that this
+/// process has not handed out before. They lie below the kernel's ephemeral range, so that
+/// between the test picking them and `rope` binding them, neither another test's bind to
+/// port 0 nor any outgoing connection (the late viewers', the runs' `--connect`) can take
+/// one: the kernel hands those out from the ephemeral range alone.
+fn free_ports(count: u16) -> u16 {
+    static HANDED_OUT: std::sync::Mutex<Vec<u16>> = std::sync::Mutex::new(Vec::new());
+    let mut handed_out = HANDED_OUT.lock().unwrap_or_else(|e| e.into_inner());
+    let ephemeral_from = std::fs::read_to_string("/proc/sys/net/ipv4/ip_local_port_range")
+        .ok()
+        .and_then(|range| range.split_whitespace().next()?.parse::<u16>().ok())
+        .unwrap_or(32_768);
+    let (low, high) = (10_000u16, ephemeral_from.clamp(11_000, 32_768) - count);
+    // Start where another suite running at the same time is unlikely to (from the process
+    // id), and each search 64 ports past the last.
+    let span = u32::from(high - low);
+    let start = std::process::id().wrapping_mul(2_654_435_761) + 64 * handed_out.len() as u32;
+    let mut port = low + (start % span) as u16;
+    for _ in 0..span {
+        let ports = port..port + count;
+        let free = ports.clone().all(|p| {
+            !handed_out.contains(&p) && std::net::TcpListener::bind(("127.0.0.1", p)).is_ok()
+        });
+        if free {
+            handed_out.extend(ports);
             return port;
         }
+        port = if port + 1 >= high { low } else { port + 1 };
     }
-    panic!("no two free ports in a row");
+    panic!("no {count} free ports in a row below the ephemeral range");
 }
 
 /// Reads `child`'s stderr until a line contains `needle` (that line) or the stream ends
