@@ -342,7 +342,7 @@ impl StudyArgs {
 /// How much of `--tolerance-check` to run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum CheckSize {
-    /// Six scenes, three tolerances.
+    /// Fourteen scenes (releases and modes), three tolerances.
     Full,
     /// Two scenes at 1e-2.
     Quick,
