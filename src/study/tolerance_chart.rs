@@ -1,6 +1,7 @@
 //! The chart of `rope study --tolerance-check`: for each scene and EPS, the CPU of what
 //! `--tolerance` did (pilots included) against the CPU of the grid's cheapest run that holds
-//! EPS, log–log, with the lines of equal cost and of 3 times it.
+//! EPS, log–log, with the lines of equal cost and of 3 times it. Only the cells past 3 times
+//! and those not held are named: the table names every cell, and 42 names overlap.
 
 use super::axes::log_range;
 use super::charts::{Drawn, SANS, legend, render_chart};
@@ -62,7 +63,9 @@ fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, cells: &[Cell]) -> Dr
             [(lo, lo * CPU_FACTOR), (hi, hi * CPU_FACTOR)],
             BLACK.mix(0.5),
         ))?
-        .label(format!("{CPU_FACTOR} × the cheapest"))
+        .label(format!(
+            "{CPU_FACTOR} × the cheapest (a cell above it, or not held, is named)"
+        ))
         .legend(|(x, y)| PathElement::new([(x, y), (x + 16, y)], BLACK.mix(0.5)));
     let mut tolerances: Vec<f64> = cells.iter().map(|c| c.tolerance).collect();
     tolerances.sort_by(|a, b| b.total_cmp(a));
@@ -79,9 +82,14 @@ fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, cells: &[Cell]) -> Dr
                 } else {
                     colour.stroke_width(2)
                 };
+                let name = if y > CPU_FACTOR * x || !held {
+                    c.scene.to_string()
+                } else {
+                    String::new()
+                };
                 EmptyElement::at((x, y))
                     + Circle::new((0, 0), 6, style)
-                    + Text::new(c.scene.to_string(), (8, -6), (SANS, 11))
+                    + Text::new(name, (8, -6), (SANS, 11))
             }))?
             .label(format!("EPS = {eps:.0e} (hollow: not held)"))
             .legend(move |(x, y)| Circle::new((x + 8, y), 5, colour.filled()));
