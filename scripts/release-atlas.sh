@@ -7,9 +7,10 @@
 # N = 566).
 #
 # `scripts/release-atlas.sh graded`: the same of the graded rods (`--method graded`) from 20°
-# up, against the graded rods extrapolated from N = 800, 1600, 3200; writes
-# assets/release-atlas/graded-atlas.csv and graded-atlas.png and .svg. About 25 minutes on 2
-# cores.
+# up, against the graded rods extrapolated from N = 800, 1600, 3200, or from 1600, 3200, 6400
+# where the first errs by more than 3e-6; writes assets/release-atlas/graded-atlas.csv and
+# graded-atlas.png and .svg. About an hour on 2 cores (an estimate from the three runs that
+# measured the committed rows: docs/measurements.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 rods=${1:-}
