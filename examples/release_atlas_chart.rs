@@ -5,7 +5,8 @@
 //! graded rods' (`graded-atlas.csv`, `graded-atlas.png` and `.svg`).
 
 use anyhow::Context;
-use rope::plan::atlas::{Atlas, REFERENCE_MARGIN};
+use rope::plan::atlas::Atlas;
+use std::collections::HashMap;
 use std::path::Path;
 
 fn main() -> anyhow::Result<()> {
@@ -25,7 +26,7 @@ fn main() -> anyhow::Result<()> {
         "the margin the held-out angles measure: {:.3}\n",
         atlas.margin
     );
-    print!("{}", table(&text));
+    print!("{}", table(&text, &atlas));
     Ok(())
 }
 
@@ -33,55 +34,48 @@ fn main() -> anyhow::Result<()> {
 const COLUMNS: [usize; 8] = [16, 32, 64, 141, 283, 566, 800, 1131];
 
 /// Each atlas angle's reference (N, own error) and worst tip error × N where the atlas trusts
-/// it (the reference's own error at most [`REFERENCE_MARGIN`] of it, from N = 16 up to the
-/// first it does not), as a Markdown table of the [`COLUMNS`] the atlas measured.
-fn table(csv: &str) -> String {
-    let measured = |n: &usize| {
-        csv.lines()
-            .any(|line| line.split(',').nth(2) == Some(n.to_string().as_str()))
-    };
+/// it ([`Atlas::rows`]), as a Markdown table of the [`COLUMNS`] the atlas measured. The
+/// worst errors, the references' N and own errors are read from the atlas's `csv`.
+fn table(csv: &str, atlas: &Atlas) -> String {
+    // (angle, N) → (worst, reference N, own error), of the atlas's angles.
+    let mut measured: HashMap<(String, usize), (f64, String, f64)> = HashMap::new();
+    for line in csv.lines().skip(1) {
+        let fields: Vec<&str> = line.split(',').collect();
+        let ["atlas", angle, segments, worst, reference, own] = fields.as_slice() else {
+            continue;
+        };
+        let (Ok(n), Ok(worst), Ok(own)) = (segments.parse(), worst.parse(), own.parse()) else {
+            continue;
+        };
+        measured.insert((angle.to_string(), n), (worst, reference.to_string(), own));
+    }
+    let columns: Vec<usize> = COLUMNS
+        .into_iter()
+        .filter(|&n| measured.keys().any(|&(_, m)| m == n))
+        .collect();
     let mut out = String::from("| angle | reference (N) | own error |");
     let mut rule = String::from("|---|---|---|");
-    for n in COLUMNS.iter().filter(|n| measured(n)) {
+    for n in &columns {
         out += &format!(" N = {n} |");
         rule += "---|";
     }
     out += &format!("\n{rule}\n");
-    // (angle, reference N, own error, [worst × N or None]) per atlas angle, in file order.
-    let mut rows: Vec<(String, String, String, Vec<Option<f64>>)> = Vec::new();
-    let mut gap = false;
-    for line in csv.lines().skip(1) {
-        let fields: Vec<&str> = line.split(',').collect();
-        let [set, angle, segments, worst, reference, own] = fields.as_slice() else {
+    for (angle_deg, trusted) in atlas.rows() {
+        let angle = angle_deg.to_string();
+        let Some((_, reference, own)) = columns
+            .first()
+            .and_then(|&n| measured.get(&(angle.clone(), n)))
+        else {
             continue;
         };
-        if *set != "atlas" {
-            continue;
-        }
-        if rows.last().is_none_or(|r| r.0 != *angle) {
-            rows.push((
-                angle.to_string(),
-                reference.to_string(),
-                own.to_string(),
-                vec![],
-            ));
-            gap = false;
-        }
-        let (worst, own): (f64, f64) = (
-            worst.parse().unwrap_or(f64::NAN),
-            own.parse().unwrap_or(f64::NAN),
-        );
-        gap |= !(worst.is_finite() && own <= REFERENCE_MARGIN * worst);
-        let n: usize = segments.parse().unwrap_or(0);
-        if let (Some(row), true) = (rows.last_mut(), COLUMNS.contains(&n)) {
-            row.3.push((!gap).then_some(worst * n as f64));
-        }
-    }
-    for (angle, reference, own, entries) in rows {
-        let own: f64 = own.parse().unwrap_or(f64::NAN);
         out += &format!("| {angle}° | {reference} | {own:.1e} |");
-        for entry in entries {
-            out += &entry.map_or(" – |".to_owned(), |c| format!(" {c:.3} |"));
+        for &n in &columns {
+            let worst = measured.get(&(angle.clone(), n)).map(|m| m.0);
+            let entry = match (trusted.iter().any(|&(m, _)| m == n), worst) {
+                (true, Some(worst)) => format!(" {:.3} |", worst * n as f64),
+                _ => " – |".to_owned(),
+            };
+            out += &entry;
         }
         out += "\n";
     }
