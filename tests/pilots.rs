@@ -408,6 +408,19 @@ fn from_30_degrees_at_1e_4_the_graded_rods_are_chosen_from_their_atlas_for_a_fra
     assert!(tolerance::from_atlas(MethodKind::Graded, &horizontal, 3.0, 1e-2).is_none());
 }
 
+/// From 70° the graded rods hold 1e-4 near N = 800 (4.8e-5), but their atlas trusts that only
+/// against a reference whose own error is a tenth of it: the reference from runs up to
+/// N = 12 800 (own error 7.4e-7), not the one to 6 400 (8.4e-6), with which the choice fell to
+/// the chain at N = 4 567.
+#[test]
+fn from_70_degrees_at_1e_4_the_graded_atlas_reaches_far_enough_to_choose_the_graded_rods() {
+    let seventy = Scene::Release { angle_deg: 70.0 };
+    let (choice, pilots) = pilot::choose(1e-4, &seventy, 3.0, 60.0, u64::MAX).unwrap();
+    assert_eq!(choice.method, MethodKind::Graded, "{choice:?}");
+    assert_eq!(pilots.basis, pilot::Basis::Atlas);
+    assert!(choice.segments <= 1131, "{choice:?}");
+}
+
 /// The release from `angle_deg` to `duration` of the graded rods at N = 800, 1600, 3200,
 /// extrapolated, its own error printed and asserted to be at most `own`.
 fn graded_reference(angle_deg: f64, duration: f64, own: f64) -> TipReference {

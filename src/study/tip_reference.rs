@@ -62,24 +62,34 @@ impl TipReference {
         duration: f64,
     ) -> anyhow::Result<Self> {
         let compute = |n| Trajectory::compute_by(method, scene, n, duration);
-        let mut runs = [segments / 2, segments, 2 * segments]
+        let runs = [segments / 2, segments, 2 * segments]
             .into_par_iter()
             .map(compute)
             .collect::<anyhow::Result<Vec<_>>>()?;
-        let mut n = segments;
-        loop {
-            let (Some(fine), Some(coarse), Some(half)) = (runs.pop(), runs.pop(), runs.pop())
-            else {
-                anyhow::bail!("three reference runs expected");
-            };
-            let reference = Self::of(method, *scene, half, coarse, fine, n, duration);
-            if reference.own_error <= target || 2 * n > most {
-                return Ok(reference);
-            }
-            n *= 2;
-            let finer = compute(2 * n)?;
-            runs = vec![reference.coarse, reference.fine, finer];
+        let [half, coarse, fine]: [Trajectory; 3] = runs
+            .try_into()
+            .map_err(|_| anyhow::anyhow!("three reference runs expected"))?;
+        let mut reference = Self::of(method, *scene, half, coarse, fine, segments, duration);
+        while reference.own_error > target && 2 * reference.segments <= most {
+            reference = reference.doubled(duration)?;
         }
+        Ok(reference)
+    }
+
+    /// This reference made from N and 2N and one more run, at 4N, to `duration` (which it
+    /// was made to): its N doubled.
+    pub fn doubled(self, duration: f64) -> anyhow::Result<Self> {
+        let segments = 2 * self.segments;
+        let finer = Trajectory::compute_by(self.method, &self.scene, 2 * segments, duration)?;
+        Ok(Self::of(
+            self.method,
+            self.scene,
+            self.coarse,
+            self.fine,
+            finer,
+            segments,
+            duration,
+        ))
     }
 
     /// The reference of `method`'s runs from `scene` at N/2, N and 2N (`half`, `coarse`,
@@ -224,6 +234,26 @@ mod tests {
         let between = reference.own_error_over(3.0, REFERENCE_RATE);
         assert!(reference.own_error < 1e-6, "{}", reference.own_error);
         assert!(between > 1e-4, "{between}");
+    }
+
+    #[test]
+    fn a_reference_doubled_is_the_one_made_at_its_new_n() {
+        // The runs are deterministic: from N = 16 doubled twice, the runs at 32, 64 and 128.
+        let scene = Scene::Mode {
+            number: 1,
+            amplitude: 0.05,
+        };
+        let refined = TipReference::refined_by(METHOD, &scene, 16, 64, 0.0, 0.5).unwrap();
+        let direct = TipReference::compute_by(METHOD, &scene, 64, 0.5).unwrap();
+        assert_eq!(refined.segments, 64);
+        assert_eq!(refined.order, direct.order);
+        assert_eq!(refined.own_error, direct.own_error);
+        for t in [0.0, 0.1234, 0.5] {
+            assert_eq!(refined.at(t), direct.at(t), "t = {t}");
+        }
+        // Short of its target, the doubling stops at the largest N allowed.
+        let capped = TipReference::refined_by(METHOD, &scene, 16, 63, 0.0, 0.5).unwrap();
+        assert_eq!(capped.segments, 16 * 2);
     }
 
     #[test]
