@@ -19,9 +19,7 @@
 use rayon::prelude::*;
 use rope::methods::MethodKind;
 use rope::model::Scene;
-use rope::plan::atlas::{
-    ATLAS_ANGLES, GRADED_FROM, HELD_OUT_ANGLES, REFERENCE_MARGIN, SEGMENTS, WINDOW,
-};
+use rope::plan::atlas::{ATLAS_ANGLES, GRADED_FROM, HELD_OUT_ANGLES, SEGMENTS, WINDOW, trusted};
 use rope::study::tip_reference::TipReference;
 use rope::study::tolerance_check::measure;
 
@@ -40,7 +38,7 @@ const REFINED_SEGMENTS: usize = 2 * REFERENCE_SEGMENTS;
 /// The N up to which an atlas angle's row must be trusted, or its reference is doubled once
 /// more: the graded rods hold 1e-4 near N = 800 from every angle the atlas measured, and an
 /// entry is trusted only where it errs by ten times its reference's own
-/// ([`REFERENCE_MARGIN`]). (The held-out angles measure the margin wherever they are trusted;
+/// ([`trusted`]). (The held-out angles measure the margin wherever they are trusted;
 /// their references are not doubled again.)
 const TRUSTED_THROUGH: usize = 800;
 
@@ -87,12 +85,10 @@ fn main() -> anyhow::Result<()> {
                     .collect()
             };
             let mut worst = row(&reference);
-            // The atlas's trust rule (`plan::atlas`): finite, and ten times the own error.
             let untrusted = |worst: &[(usize, f64)], own: f64| {
-                worst.iter().any(|&(n, e)| {
-                    let trusted = e.is_finite() && own <= REFERENCE_MARGIN * e;
-                    n <= TRUSTED_THROUGH && !trusted
-                })
+                worst
+                    .iter()
+                    .any(|&(n, e)| n <= TRUSTED_THROUGH && !trusted(e, own))
             };
             if method == MethodKind::Graded
                 && set == "atlas"
@@ -103,7 +99,7 @@ fn main() -> anyhow::Result<()> {
                     "{set} {angle_deg}°: own error {:.1e} at N = {}; doubled",
                     reference.own_error, reference.segments
                 );
-                reference = reference.doubled(WINDOW)?;
+                reference = reference.doubled()?;
                 worst = row(&reference);
             }
             eprintln!(

@@ -43,6 +43,12 @@ pub const WINDOW: f64 = 3.0;
 /// An entry is trusted only where its reference's own error is at most this fraction of it.
 pub const REFERENCE_MARGIN: f64 = 0.1;
 
+/// Whether the atlas trusts a measured worst error against a reference whose own error is
+/// `own`: a finite error at least 1/[`REFERENCE_MARGIN`] times it.
+pub fn trusted(worst: f64, own: f64) -> bool {
+    worst.is_finite() && own <= REFERENCE_MARGIN * worst
+}
+
 /// The measurements, as `scripts/release-atlas.sh` wrote them.
 const CSV: &str = include_str!("../../assets/release-atlas/atlas.csv");
 
@@ -137,9 +143,8 @@ impl Atlas {
                     bound: [None; SEGMENTS.len()],
                 });
             }
-            let trusted = worst.is_finite() && own <= REFERENCE_MARGIN * worst;
             if let Some(row) = table.last_mut() {
-                row.bound[j] = trusted.then_some(worst + own);
+                row.bound[j] = trusted(worst, own).then_some(worst + own);
             }
         }
         for row in rows.iter_mut().chain(held_out.iter_mut()) {

@@ -27,6 +27,8 @@ pub struct TipReference {
     pub segments: usize,
     /// The order observed from the three, between 1 (a whip) and 2 (the chain's nominal).
     pub order: f64,
+    /// The simulated time its runs cover.
+    pub duration: f64,
     /// The largest change of the extrapolated tip over the frames ([`LOG_RATE`] a time unit)
     /// when it is made from N and 2N rather than from N/2 and N: a bound on the coarser one's
     /// error, taken for this one's (conservative where the extrapolation converges).
@@ -71,16 +73,15 @@ impl TipReference {
             .map_err(|_| anyhow::anyhow!("three reference runs expected"))?;
         let mut reference = Self::of(method, *scene, half, coarse, fine, segments, duration);
         while reference.own_error > target && 2 * reference.segments <= most {
-            reference = reference.doubled(duration)?;
+            reference = reference.doubled()?;
         }
         Ok(reference)
     }
 
-    /// This reference made from N and 2N and one more run, at 4N, to `duration` (which it
-    /// was made to): its N doubled.
-    pub fn doubled(self, duration: f64) -> anyhow::Result<Self> {
+    /// This reference made from its runs at N and 2N and one more run, at 4N: its N doubled.
+    pub fn doubled(self) -> anyhow::Result<Self> {
         let segments = 2 * self.segments;
-        let finer = Trajectory::compute_by(self.method, &self.scene, 2 * segments, duration)?;
+        let finer = Trajectory::compute_by(self.method, &self.scene, 2 * segments, self.duration)?;
         Ok(Self::of(
             self.method,
             self.scene,
@@ -88,7 +89,7 @@ impl TipReference {
             self.fine,
             finer,
             segments,
-            duration,
+            self.duration,
         ))
     }
 
@@ -121,6 +122,7 @@ impl TipReference {
             fine,
             segments,
             order,
+            duration,
             own_error: 0.0,
         };
         reference.own_error = reference.own_error_over(duration, LOG_RATE);
