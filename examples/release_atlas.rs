@@ -13,13 +13,17 @@
 //! alone.
 //!
 //! A reference whose own error is above [`REFINED_TO`] is made from N = 1600, 3200 and 6400
-//! instead; the graded rods' at an atlas angle, once more (from 3200, 6400 and 12 800), where
-//! it still keeps the atlas from trusting its row up to [`TRUSTED_THROUGH`].
+//! instead. The graded rods' is doubled once more (to at most [`TWICE_REFINED`]) where it
+//! keeps the atlas from trusting an entry it needs: at an atlas angle, any entry (the choices
+//! read the row up to N = 1131); at a held-out angle, an entry whose neighbours the committed
+//! atlas trusts and which, at its bound, would stray above them (it could set the margin).
 
 use rayon::prelude::*;
 use rope::methods::MethodKind;
 use rope::model::Scene;
-use rope::plan::atlas::{ATLAS_ANGLES, GRADED_FROM, HELD_OUT_ANGLES, SEGMENTS, WINDOW, trusted};
+use rope::plan::atlas::{
+    ATLAS_ANGLES, Atlas, GRADED_FROM, HELD_OUT_ANGLES, SEGMENTS, WINDOW, trusted,
+};
 use rope::study::tip_reference::TipReference;
 use rope::study::tolerance_check::measure;
 
@@ -35,12 +39,13 @@ const REFINED_TO: f64 = 3e-6;
 /// The largest N a reference is refined to (its finest run at 2N): one doubling.
 const REFINED_SEGMENTS: usize = 2 * REFERENCE_SEGMENTS;
 
-/// The N up to which an atlas angle's row must be trusted, or its reference is doubled once
-/// more: the graded rods hold 1e-4 near N = 800 from every angle the atlas measured, and an
-/// entry is trusted only where it errs by ten times its reference's own
-/// ([`trusted`]). (The held-out angles measure the margin wherever they are trusted;
-/// their references are not doubled again.)
-const TRUSTED_THROUGH: usize = 800;
+/// The largest N a reference is doubled to: its finest run at 12 800, about 1 300 s of CPU
+/// (`docs/measurements.md`).
+const TWICE_REFINED: usize = 2 * REFINED_SEGMENTS;
+
+/// A reference's own error below this is round-off (the vertical release hangs still): no
+/// doubling can make the atlas trust errors of that size.
+const ROUND_OFF: f64 = 1e-12;
 
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -85,15 +90,10 @@ fn main() -> anyhow::Result<()> {
                     .collect()
             };
             let mut worst = row(&reference);
-            let untrusted = |worst: &[(usize, f64)], own: f64| {
-                worst
-                    .iter()
-                    .any(|&(n, e)| n <= TRUSTED_THROUGH && !trusted(e, own))
-            };
             if method == MethodKind::Graded
-                && set == "atlas"
-                && reference.own_error > REFINED_TO
-                && untrusted(&worst, reference.own_error)
+                && reference.segments * 2 <= TWICE_REFINED
+                && reference.own_error > ROUND_OFF
+                && keeps_out(set, angle_deg, &worst, reference.own_error)
             {
                 eprintln!(
                     "{set} {angle_deg}°: own error {:.1e} at N = {}; doubled",
@@ -123,4 +123,22 @@ fn main() -> anyhow::Result<()> {
         println!("{line}");
     }
     Ok(())
+}
+
+/// Whether a graded row measured against a reference of own error `own` leaves out an entry
+/// the atlas needs: at an atlas angle, any it does not trust; at a held-out angle, one it does
+/// not trust where the committed atlas trusts both neighbours and the entry's bound (its error
+/// plus `own`) is above theirs.
+fn keeps_out(set: &str, angle_deg: f64, worst: &[(usize, f64)], own: f64) -> bool {
+    let untrusted = worst.iter().map(|&(_, e)| !trusted(e, own));
+    if set == "atlas" {
+        return untrusted.into_iter().any(|u| u);
+    }
+    let Some(neighbours) = Atlas::committed_graded().and_then(|a| a.neighbours(angle_deg)) else {
+        return false;
+    };
+    untrusted
+        .zip(worst)
+        .zip(neighbours)
+        .any(|((u, &(_, e)), n)| u && n.is_some_and(|n| e + own > n))
 }

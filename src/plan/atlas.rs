@@ -13,7 +13,9 @@
 //!
 //! For an angle between two of the atlas's, the larger of their two errors at each N is
 //! taken, times a margin measured at the held-out angles 5°, 15°, …, 85°: the largest ratio of
-//! a held-out angle's error to that of its two neighbours. Between the atlas's N, the error
+//! a held-out angle's error to that of its two neighbours (where its reference is too coarse
+//! to bound its error, what the error is at least: the measured error less the reference's
+//! own). Between the atlas's N, the error
 //! is taken as first order from the largest constant (error × N) at that N and above. The
 //! atlas serves only what it measured: the rods, a release, runs to t ≤ 3, N ≤ 566, and
 //! errors at least ten times its references' own; elsewhere the method's one law stands.
@@ -62,6 +64,10 @@ struct Row {
     /// A bound on the worst tip error at each of [`SEGMENTS`] (the measured error plus its
     /// reference's own), trusted from N = 16 up to the first that is not; `None` from there.
     bound: [Option<f64>; SEGMENTS.len()],
+    /// What the worst tip error at each of [`SEGMENTS`] is at least (the measured error less
+    /// its reference's own), trusted or not: an entry too coarse to bound the error still
+    /// shows how far a held-out angle strays at least.
+    floor: [Option<f64>; SEGMENTS.len()],
 }
 
 /// The atlas and held-out rows, and the margin the held-out rows measure.
@@ -141,13 +147,15 @@ impl Atlas {
                 table.push(Row {
                     angle_deg,
                     bound: [None; SEGMENTS.len()],
+                    floor: [None; SEGMENTS.len()],
                 });
             }
             if let Some(row) = table.last_mut() {
                 row.bound[j] = trusted(worst, own).then_some(worst + own);
+                row.floor[j] = (worst.is_finite() && worst > own).then_some(worst - own);
             }
         }
-        for row in rows.iter_mut().chain(held_out.iter_mut()) {
+        for row in &mut rows {
             // Trusted from N = 16 up to the first that is not.
             if let Some(first_gap) = row.bound.iter().position(Option::is_none) {
                 row.bound[first_gap..].fill(None);
@@ -165,18 +173,15 @@ impl Atlas {
             held_out,
             margin: 1.0,
         };
+        // At each N where the neighbours are trusted: the held-out angle's bound where it is
+        // trusted, else what its error is at least.
         atlas.margin = atlas
             .held_out
             .iter()
-            .filter_map(|h| Some((h, atlas.between(h.angle_deg)?)))
+            .filter_map(|h| Some((h, atlas.neighbours(h.angle_deg)?)))
             .flat_map(|(h, neighbours)| {
-                h.bound
-                    .iter()
-                    .zip(neighbours)
-                    .filter_map(|pair| match pair {
-                        (Some(e), Some(n)) => Some(e / n),
-                        _ => None,
-                    })
+                (0..SEGMENTS.len())
+                    .filter_map(|j| Some(h.bound[j].or(h.floor[j])? / neighbours[j]?))
                     .collect::<Vec<_>>()
             })
             .fold(1.0, f64::max);
@@ -196,9 +201,9 @@ impl Atlas {
         })
     }
 
-    /// The larger of the two atlas rows around `angle_deg` at each N (the one row at an atlas
-    /// angle), trusted where both are; `None` outside the atlas's angles.
-    fn between(&self, angle_deg: f64) -> Option<[Option<f64>; SEGMENTS.len()]> {
+    /// The larger of the two atlas rows' bounds around `angle_deg` at each of [`SEGMENTS`] (the
+    /// one row at an atlas angle), where both are trusted; `None` outside the atlas's angles.
+    pub fn neighbours(&self, angle_deg: f64) -> Option<[Option<f64>; SEGMENTS.len()]> {
         let i = self.rows.iter().position(|r| r.angle_deg >= angle_deg)?;
         let high = &self.rows[i];
         let low = match high.angle_deg == angle_deg {
@@ -224,7 +229,7 @@ impl Atlas {
         if duration.is_nan() || duration > WINDOW || tolerance.is_nan() || tolerance <= 0.0 {
             return None;
         }
-        let bound = self.between(angle_deg)?;
+        let bound = self.neighbours(angle_deg)?;
         let trusted = bound.iter().take_while(|b| b.is_some()).count();
         let last = *SEGMENTS.get(trusted.checked_sub(1)?)?;
         // Each trusted N with the largest constant (error × N) there and above: a bound at
@@ -315,6 +320,36 @@ mod tests {
         }
     }
 
+    /// The held-out rows are measurements at angles the atlas's rows do not include: wherever
+    /// a held-out angle's choice claims to hold, its own row must not show an error past the
+    /// tolerance (at least: the measured error less its reference's own).
+    #[test]
+    fn every_choice_at_a_held_out_angle_holds_where_that_angle_was_measured() {
+        for (name, text) in [("chain", CSV), ("graded", GRADED_CSV)] {
+            let atlas = Atlas::parse(text).expect("the committed atlas reads");
+            for held in &atlas.held_out {
+                let scene = Scene::Release {
+                    angle_deg: held.angle_deg,
+                };
+                for tolerance in [1e-2, 3e-3, 1e-3, 3e-4, 1e-4] {
+                    let Some(model) = atlas.model(&scene, WINDOW, tolerance) else {
+                        continue;
+                    };
+                    let chosen = model.segments_for(tolerance);
+                    for (n, floor) in SEGMENTS.iter().zip(held.floor) {
+                        let at_least = floor.unwrap_or(0.0);
+                        assert!(
+                            *n < chosen || at_least <= tolerance,
+                            "{name}, {}° at {tolerance:e}: N = {chosen} chosen, but at N = {n} \
+                             the error is at least {at_least:.2e}",
+                            held.angle_deg
+                        );
+                    }
+                }
+            }
+        }
+    }
+
     #[test]
     fn an_angle_between_two_takes_the_larger_error_and_the_held_out_margin() {
         let text = csv(&[
@@ -345,6 +380,28 @@ mod tests {
             amplitude: 0.05,
         };
         assert!(atlas.model(&mode, 3.0, 1e-3).is_none());
+    }
+
+    #[test]
+    fn a_held_out_error_too_fine_for_its_reference_still_raises_the_margin_by_what_it_is_at_least()
+     {
+        let mut text = csv(&[("atlas", 0.0, law(0.4)), ("atlas", 10.0, law(0.2))]);
+        // The 5° row errs by 0.4/N, but at N = 566 by 0.9/N against a reference whose own
+        // error is 2e-4 (untrusted): the error there is at least (0.9/566 − 2e-4), 1.97 times
+        // its neighbours'.
+        for (n, e) in SEGMENTS.iter().zip(law(0.4)) {
+            let (e, own) = match *n == 566 {
+                true => (0.9 / 566.0, 2e-4),
+                false => (e, 0.0),
+            };
+            text += &format!("held-out,5,{n},{e:e},1600,{own:e}\n");
+        }
+        let atlas = Atlas::parse(&text).unwrap();
+        let expected = (0.9 / 566.0 - 2e-4) / (0.4 / 566.0);
+        assert!((atlas.margin - expected).abs() < 1e-9, "{}", atlas.margin);
+        // An entry that errs by less than its reference's own says nothing.
+        let quiet = text.replace(&format!("{:e},1600,{:e}", 0.9 / 566.0, 2e-4), "1e-4,1600,2e-4");
+        assert_eq!(Atlas::parse(&quiet).unwrap().margin, 1.0);
     }
 
     #[test]
