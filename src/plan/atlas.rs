@@ -383,8 +383,7 @@ mod tests {
     }
 
     #[test]
-    fn a_held_out_error_too_fine_for_its_reference_still_raises_the_margin_by_what_it_is_at_least()
-     {
+    fn an_untrusted_held_out_error_still_raises_the_margin_by_what_it_is_at_least() {
         let mut text = csv(&[("atlas", 0.0, law(0.4)), ("atlas", 10.0, law(0.2))]);
         // The 5° row errs by 0.4/N, but at N = 566 by 0.9/N against a reference whose own
         // error is 2e-4 (untrusted): the error there is at least (0.9/566 − 2e-4), 1.97 times
@@ -400,7 +399,10 @@ mod tests {
         let expected = (0.9 / 566.0 - 2e-4) / (0.4 / 566.0);
         assert!((atlas.margin - expected).abs() < 1e-9, "{}", atlas.margin);
         // An entry that errs by less than its reference's own says nothing.
-        let quiet = text.replace(&format!("{:e},1600,{:e}", 0.9 / 566.0, 2e-4), "1e-4,1600,2e-4");
+        let quiet = text.replace(
+            &format!("{:e},1600,{:e}", 0.9 / 566.0, 2e-4),
+            "1e-4,1600,2e-4",
+        );
         assert_eq!(Atlas::parse(&quiet).unwrap().margin, 1.0);
     }
 
