@@ -15,10 +15,10 @@
 //! taken, times a margin measured at the held-out angles 5°, 15°, …, 85°: the largest ratio of
 //! a held-out angle's error to that of its two neighbours (where its reference is too coarse
 //! to bound its error, what the error is at least: the measured error less the reference's
-//! own). Between the atlas's N, the error
-//! is taken as first order from the largest constant (error × N) at that N and above. The
-//! atlas serves only what it measured: the rods, a release, runs to t ≤ 3, N ≤ 566, and
-//! errors at least ten times its references' own; elsewhere the method's one law stands.
+//! own). Between the atlas's N, the error is taken as first order from the largest constant
+//! (error × N) at that N and above. The atlas serves only what it measured: the rods, a
+//! release, runs to t ≤ 3, N ≤ 566 (the graded rods' to 1131), and errors at least ten times
+//! its references' own; elsewhere the method's one law stands.
 
 use crate::methods::MethodKind;
 use crate::methods::error_model::ErrorModel;
