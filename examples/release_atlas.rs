@@ -130,15 +130,14 @@ fn main() -> anyhow::Result<()> {
 /// not trust where the committed atlas trusts both neighbours and the entry's bound (its error
 /// plus `own`) is above theirs.
 fn keeps_out(set: &str, angle_deg: f64, worst: &[(usize, f64)], own: f64) -> bool {
-    let untrusted = worst.iter().map(|&(_, e)| !trusted(e, own));
     if set == "atlas" {
-        return untrusted.into_iter().any(|u| u);
+        return worst.iter().any(|&(_, e)| !trusted(e, own));
     }
     let Some(neighbours) = Atlas::committed_graded().and_then(|a| a.neighbours(angle_deg)) else {
         return false;
     };
-    untrusted
-        .zip(worst)
+    worst
+        .iter()
         .zip(neighbours)
-        .any(|((u, &(_, e)), n)| u && n.is_some_and(|n| e + own > n))
+        .any(|(&(_, e), n)| !trusted(e, own) && n.is_some_and(|n| e + own > n))
 }

@@ -181,8 +181,7 @@ impl Atlas {
             .filter_map(|h| Some((h, atlas.neighbours(h.angle_deg)?)))
             .flat_map(|(h, neighbours)| {
                 (0..SEGMENTS.len())
-                    .filter_map(|j| Some(h.bound[j].or(h.floor[j])? / neighbours[j]?))
-                    .collect::<Vec<_>>()
+                    .filter_map(move |j| Some(h.bound[j].or(h.floor[j])? / neighbours[j]?))
             })
             .fold(1.0, f64::max);
         Ok(atlas)
