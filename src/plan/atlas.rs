@@ -11,14 +11,17 @@
 //! (`scripts/release-atlas.sh`, which writes `assets/release-atlas/atlas.csv`, read here at
 //! build time).
 //!
-//! For an angle between two of the atlas's, the larger of their two errors at each N is
-//! taken, times a margin measured at the held-out angles 5°, 15°, …, 85°: the largest ratio of
-//! a held-out angle's error to that of its two neighbours (where its reference is too coarse
-//! to bound its error, what the error is at least: the measured error less the reference's
-//! own). Between the atlas's N, the error is taken as first order from the largest constant
-//! (error × N) at that N and above. The atlas serves only what it measured: the rods, a
-//! release, runs to t ≤ 3, N ≤ 566 (the graded rods' to 1131), and errors at least ten times
-//! its references' own; elsewhere the method's one law stands.
+//! At an angle the atlas measured, a tolerance may be met by an N it measured there: the
+//! fewest whose bound (the measured error plus its reference's own) holds it, with no margin,
+//! since nothing is interpolated. Otherwise, and wherever it asks fewer segments, for an angle
+//! between two of the atlas's the larger of their two errors at each N is taken, times a
+//! margin measured at the held-out angles 5°, 15°, …, 85°: the largest ratio of a held-out
+//! angle's error to that of its two neighbours (where its reference is too coarse to bound its
+//! error, what the error is at least: the measured error less the reference's own). Between
+//! the atlas's N, the error is taken as first order from the largest constant (error × N) at
+//! that N and above. The atlas serves only what it measured: the rods, a release, runs to
+//! t ≤ 3, N ≤ 566 (the graded rods' to 1131), and errors at least ten times its references'
+//! own; elsewhere the method's one law stands.
 
 use crate::methods::MethodKind;
 use crate::methods::error_model::ErrorModel;
@@ -217,10 +220,14 @@ impl Atlas {
         }))
     }
 
-    /// The rods' error model from `scene` to `duration` for `tolerance`: first order, its
-    /// constant the largest error × N of the angle's neighbours (times [`Atlas::margin`]) at
-    /// the fewest N of the atlas from which it holds `tolerance`; `None` for a mode, a run
-    /// longer than [`WINDOW`], or a tolerance the atlas's trusted N do not reach.
+    /// The rods' error model from `scene` to `duration` for `tolerance`: of the two below, the
+    /// one that asks fewer segments; `None` for a mode, a run longer than [`WINDOW`], or a
+    /// tolerance neither reaches.
+    /// - At an angle the atlas measured, that angle's own row: the fewest N it measured whose
+    ///   bound holds `tolerance` (`Atlas::measured`). No margin: nothing is interpolated.
+    /// - Everywhere, the interpolated law: first order, its constant the largest error × N of
+    ///   the angle's neighbours (times [`Atlas::margin`]) at the fewest N of the atlas from
+    ///   which it holds `tolerance`.
     pub fn model(&self, scene: &Scene, duration: f64, tolerance: f64) -> Option<ErrorModel> {
         let Scene::Release { angle_deg } = *scene else {
             return None;
@@ -228,6 +235,34 @@ impl Atlas {
         if duration.is_nan() || duration > WINDOW || tolerance.is_nan() || tolerance <= 0.0 {
             return None;
         }
+        let measured = self.measured(angle_deg, tolerance);
+        let interpolated = self.interpolated(angle_deg, tolerance);
+        [measured, interpolated]
+            .into_iter()
+            .flatten()
+            .min_by_key(|model| model.segments_for(tolerance))
+    }
+
+    /// At an angle of the atlas's own rows, the fewest of [`SEGMENTS`] whose trusted bound (the
+    /// measured worst error plus its reference's own) is within `tolerance`, as a law that asks
+    /// exactly that N for `tolerance` (its bound there is `tolerance`, at least what was
+    /// measured); `None` at another angle, or where no trusted N holds it.
+    fn measured(&self, angle_deg: f64, tolerance: f64) -> Option<ErrorModel> {
+        let row = self.rows.iter().find(|r| r.angle_deg == angle_deg)?;
+        let j = row
+            .bound
+            .iter()
+            .map_while(|b| *b)
+            .position(|bound| bound <= tolerance)?;
+        Some(ErrorModel {
+            constant: tolerance * (SEGMENTS[j] as f64 - 0.5),
+            order: 1.0,
+            safety: 1.0,
+        })
+    }
+
+    /// The first-order law from the neighbours' rows times the margin (see [`Atlas::model`]).
+    fn interpolated(&self, angle_deg: f64, tolerance: f64) -> Option<ErrorModel> {
         let bound = self.neighbours(angle_deg)?;
         let trusted = bound.iter().take_while(|b| b.is_some()).count();
         let last = *SEGMENTS.get(trusted.checked_sub(1)?)?;
@@ -379,6 +414,37 @@ mod tests {
             amplitude: 0.05,
         };
         assert!(atlas.model(&mode, 3.0, 1e-3).is_none());
+    }
+
+    #[test]
+    fn at_an_atlas_angle_the_fewest_measured_n_whose_bound_holds_is_chosen_without_the_margin() {
+        let text = csv(&[
+            ("atlas", 0.0, law(0.4)),
+            ("atlas", 10.0, law(0.2)),
+            ("held-out", 5.0, law(0.8)),
+        ]);
+        let atlas = Atlas::parse(&text).unwrap();
+        assert!((atlas.margin - 2.0).abs() < 1e-12);
+        let at = |angle_deg, eps| {
+            let model = atlas.model(&Scene::Release { angle_deg }, 3.0, eps)?;
+            Some(model.segments_for(eps))
+        };
+        // At 10°, 0.2/N is within 1e-3 from N = 200, which the atlas measured; the law times
+        // the margin would ask for 400.
+        assert_eq!(at(10.0, 1e-3), Some(200));
+        // Within 1.5e-3 from N = 133.3: the next measured, 141 (the law times the margin: 267).
+        assert_eq!(at(10.0, 1.5e-3), Some(141));
+        // Where the law times the margin asks fewer than the next measured N, the law: with no
+        // held-out angle (a margin of 1), 1e-2 from 0.2/N asks for 20, where the next measured
+        // N is 25.
+        let no_margin =
+            Atlas::parse(&csv(&[("atlas", 0.0, law(0.4)), ("atlas", 10.0, law(0.2))])).unwrap();
+        let model = no_margin.model(&Scene::Release { angle_deg: 10.0 }, 3.0, 1e-2);
+        assert_eq!(model.map(|m| m.segments_for(1e-2)), Some(20));
+        // Between two atlas angles, the margin: 0.4 × 2 / 1e-3.
+        assert_eq!(at(7.0, 1e-3), Some(800));
+        // At 0°, 0.4/N is within 1e-4 only from N = 4 000, past what was measured: no model.
+        assert_eq!(at(0.0, 1e-4), None);
     }
 
     #[test]

@@ -141,8 +141,8 @@ pub enum Basis {
     /// The committed model alone: no pilot was worth its cost, or none measured anything.
     Committed,
     /// The committed model, from the release atlas of the chosen rods
-    /// ([`tolerance::from_atlas`]): their error measured from this angle's neighbours up to
-    /// large N, alone or tighter than the pilots' own.
+    /// ([`tolerance::from_atlas`]): their error measured at this angle, or from its neighbours,
+    /// up to large N, alone or tighter than the pilots' own.
     Atlas,
 }
 
@@ -157,7 +157,7 @@ impl Basis {
                 "the committed error model, here tighter than the pilots' own (measured at N ≤ 64)"
             }
             Self::Atlas => {
-                "the release atlas of the chosen rods: their worst error to t = 3 measured from this angle's neighbours 10° apart (the chain's rods from 0° up to N = 566, the graded rods from 20° up to N = 1131), times the margin the angles between them showed (`scripts/release-atlas.sh`)"
+                "the release atlas of the chosen rods: their worst error to t = 3 measured at the release angles 10° apart (the chain's rods from 0° up to N = 566, the graded rods from 20° up to N = 1131), at this angle's own N where it is one of them, else from its two neighbours times the margin the angles between them showed (`scripts/release-atlas.sh`)"
             }
             Self::Committed => {
                 "the committed error model, fitted to t = 3 over six scenes by `rope study --estimate-check`, no cheaper run found by the pilots that were worth their cost"
@@ -348,7 +348,7 @@ fn committed_covers(duration: f64) -> bool {
 /// Of `method`'s own model (from its pilots) and its committed one (in `models`, for this
 /// scene, duration and tolerance: [`Committed::look_up`]), the one that asks fewer segments for `eps`, the
 /// committed one only where it covers the run's duration; `None` without an own model. Both
-/// bound measured errors: the own model the scene's at N ≤ 64, extrapolated; the committed one the release atlas's at this angle's neighbours, or the
+/// bound measured errors: the own model the scene's at N ≤ 64, extrapolated; the committed one the release atlas's at this angle or its neighbours, or the
 /// worst of six scenes, up to large N. Where a whip's error constant falls at large N, which
 /// the pilots cannot see, the committed model is the tighter (from 30°: 0.49/N against the
 /// pilots' 0.84/N).

@@ -59,7 +59,7 @@ pub fn choose_committed(
 /// Where a method's committed error model comes from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Source {
-    /// The release atlas, measured from this angle's neighbours ([`from_atlas`]).
+    /// The release atlas, measured at this angle or from its neighbours ([`from_atlas`]).
     Atlas,
     /// The method's one law, fitted to the worst of six scenes (its descriptor's).
     Law,
