@@ -283,10 +283,11 @@ fn tolerance_check(
     say(
         session,
         format!(
-            "rope study: {} scenes, each a reference at N = {} (with N/2 and 2N; N doubled up to {} until it is fine enough), a grid of up to {} runs and a choice per EPS in {:?}, to t = {}",
+            "rope study: {} scenes, each a reference at N = {} (with N/2 and 2N; N doubled up to {} until it is fine enough, and on up to {} where it can get there), a grid of up to {} runs and a choice per EPS in {:?}, to t = {}",
             spec.scenes.len(),
             spec.reference_segments,
             spec.reference_segments_max,
+            spec.reference_segments_reach,
             grid_runs,
             spec.tolerances,
             spec.duration

@@ -78,6 +78,18 @@ impl TipReference {
         Ok(reference)
     }
 
+    /// Whether doubling N up to `most` could bring the own error to `target`, were it to fall
+    /// at the order the runs show, or at second order if that is faster (the chain's nominal
+    /// order; a whip's is first): a bound on what doubling can buy, so that a doubling that
+    /// cannot reach its target is not paid for.
+    pub fn could_reach(&self, target: f64, most: usize) -> bool {
+        let order = match self.order.is_finite() {
+            true => self.order.max(2.0),
+            false => 2.0,
+        };
+        self.own_error * (self.segments as f64 / most as f64).powf(order) <= target
+    }
+
     /// This reference made from its runs at N and 2N and one more run, at 4N: its N doubled.
     pub fn doubled(self) -> anyhow::Result<Self> {
         let segments = 2 * self.segments;
@@ -256,6 +268,27 @@ mod tests {
         // Short of its target, the doubling stops at the largest N allowed.
         let capped = TipReference::refined_by(METHOD, &scene, 16, 63, 0.0, 0.5).unwrap();
         assert_eq!(capped.segments, 16 * 2);
+    }
+
+    #[test]
+    fn a_doubling_that_cannot_reach_its_target_even_at_second_order_is_not_asked_for() {
+        let [half, coarse, fine] = runs_around(|t| Point::new(t.cos(), t.sin()));
+        let mut reference = TipReference::of(METHOD, SCENE, half, coarse, fine, 3200, 3.0);
+        // A whip's first order, 7.2e-4 at N = 3 200: at second order still 1.8e-4 by 6 400.
+        reference.own_error = 7.2e-4;
+        reference.order = 1.0;
+        assert!(!reference.could_reach(1e-5, 6400));
+        // 1.4e-5: at second order 3.5e-6 by 6 400, so the doubling is worth trying.
+        reference.own_error = 1.4e-5;
+        assert!(reference.could_reach(1e-5, 6400));
+        // A third order shown is taken at its word: 7.2e-5 / 8 = 9e-6.
+        reference.own_error = 7.2e-5;
+        reference.order = 3.0;
+        assert!(reference.could_reach(1e-5, 6400));
+        reference.order = 2.0;
+        assert!(!reference.could_reach(1e-5, 6400));
+        // Nothing to double into.
+        assert!(!reference.could_reach(1e-5, 3200));
     }
 
     #[test]

@@ -36,8 +36,12 @@ pub struct CheckSpec {
     /// ...
     pub reference_segments: usize,
     /// ... N doubled while the reference's own error is above [`REFERENCE_MARGIN`] × the
-    /// smallest EPS, up to this N.
+    /// smallest EPS, up to this N ...
     pub reference_segments_max: usize,
+    /// ... and on up to this one where the order the runs show (at least 2) would bring it
+    /// there by this N ([`TipReference::could_reach`]): a doubling that cannot reach its
+    /// target is not paid for (the horizontal release's first-order whip).
+    pub reference_segments_reach: usize,
     /// The grid's segment counts (every startable method at each, at [`grid_steps`]).
     pub grid: Vec<usize>,
 }
@@ -48,9 +52,9 @@ impl Default for CheckSpec {
     /// modes 1 and 2 (tip amplitude 0.05); EPS = 1e-2, 1e-3 and 1e-4 (each where the
     /// reference allows), to t = 3, against the reference method extrapolated from N/2, N and
     /// 2N with N from 200 up to 3200 (a whip's reference reaches an own error of 1e-5, what
-    /// judges 1e-4, near N = 1600 from 20° to 40°, if at all elsewhere: 6400 rods, up to four
-    /// minutes a scene), beside a grid up to N = 800 (where the graded rods hold 1e-4 from
-    /// 30°).
+    /// judges 1e-4, near N = 1600 from 20° to 40°: 6400 rods, up to four minutes a scene),
+    /// and to 6400 where that can reach it (from 80° and 52°: runs up to 12 800 rods, about
+    /// 20 minutes each), beside a grid up to N = 1131 (the graded rods' atlas's largest N).
     fn default() -> Self {
         let release = |angle_deg| Scene::Release { angle_deg };
         let mode = |number| Scene::Mode {
@@ -66,7 +70,8 @@ impl Default for CheckSpec {
             duration: 3.0,
             reference_segments: 200,
             reference_segments_max: 3200,
-            grid: vec![16, 25, 32, 50, 64, 100, 141, 200, 283, 400, 566, 800],
+            reference_segments_reach: 6400,
+            grid: vec![16, 25, 32, 50, 64, 100, 141, 200, 283, 400, 566, 800, 1131],
         }
     }
 }
@@ -87,6 +92,7 @@ impl CheckSpec {
             duration: 3.0,
             reference_segments: 200,
             reference_segments_max: 200,
+            reference_segments_reach: 200,
             grid: vec![16, 25, 32, 50, 64, 100],
         }
     }
@@ -222,16 +228,24 @@ pub fn check(spec: &CheckSpec, tick: impl Fn() + Sync) -> anyhow::Result<Checked
         .scenes
         .par_iter()
         .map(|scene| {
-            let reference = TipReference::refined_by(
+            let target = REFERENCE_MARGIN * smallest;
+            let mut reference = TipReference::refined_by(
                 reference_method(scene),
                 scene,
                 spec.reference_segments,
                 spec.reference_segments_max,
-                REFERENCE_MARGIN * smallest,
+                target,
                 spec.duration,
-            );
+            )?;
+            let reach = spec.reference_segments_reach;
+            while reference.own_error > target
+                && 2 * reference.segments <= reach
+                && reference.could_reach(target, reach)
+            {
+                reference = reference.doubled()?;
+            }
             tick();
-            reference
+            Ok(reference)
         })
         .collect::<anyhow::Result<Vec<_>>>()?;
     for reference in &references {
@@ -300,8 +314,9 @@ pub fn markdown(spec: &CheckSpec, checked: &Checked, command: &str) -> String {
          pilots, then the chosen method, N and k with its shadow at N/2) is compared at every \
          frame ({LOG_RATE} per time unit) with the tip of a reference: the {} method (the graded \
          rods where their end rods do not spin on, a release from 20° up: their tip converges \
-         faster through the whip) at N/2, N and 2N, extrapolated in N at the order the three show, N doubled from {} (up to {}) \
-         until the reference's own error is at most {REFERENCE_MARGIN} × the smallest EPS. Its \
+         faster through the whip) at N/2, N and 2N, extrapolated in N at the order the three show, N doubled from {} (up to {}, \
+         and on up to {} where the order the runs show, or 2 if less, would reach it) until the \
+         reference's own error is at most {REFERENCE_MARGIN} × the smallest EPS. Its \
          CPU (one thread, pilots included) is set beside the cheapest run of the grid (every \
          method that can start, at N = {:?}, each at its default step and at its tolerance step \
          where that is another, without a shadow) whose largest error also holds EPS. A \
@@ -317,6 +332,7 @@ pub fn markdown(spec: &CheckSpec, checked: &Checked, command: &str) -> String {
         MethodKind::REFERENCE,
         spec.reference_segments,
         spec.reference_segments_max,
+        spec.reference_segments_reach,
         spec.grid
     );
     for r in &checked.references {
