@@ -245,8 +245,8 @@ impl Atlas {
 
     /// At an angle of the atlas's own rows, the fewest of [`SEGMENTS`] whose trusted bound (the
     /// measured worst error plus its reference's own) is within `tolerance`, as a law that asks
-    /// exactly that N for `tolerance` (its bound there is `tolerance`, at least what was
-    /// measured); `None` at another angle, or where no trusted N holds it.
+    /// exactly that N for `tolerance` (its bound there is just under `tolerance`, and at least
+    /// what was measured); `None` at another angle, or where no trusted N holds it.
     fn measured(&self, angle_deg: f64, tolerance: f64) -> Option<ErrorModel> {
         let row = self.rows.iter().find(|r| r.angle_deg == angle_deg)?;
         let j = row
