@@ -320,6 +320,17 @@ mod tests {
         SEGMENTS.map(|n| c / n as f64)
     }
 
+    /// The atlas of errors 0.4/N at 0° and 0.2/N at 10°, and `held_out`/N at 5°: its margin
+    /// `held_out` / 0.4.
+    fn two_angles_and_5_degrees_held_out(held_out: f64) -> Atlas {
+        let text = csv(&[
+            ("atlas", 0.0, law(0.4)),
+            ("atlas", 10.0, law(0.2)),
+            ("held-out", 5.0, law(held_out)),
+        ]);
+        Atlas::parse(&text).expect("the atlas reads")
+    }
+
     #[test]
     fn the_committed_atlas_reads_and_its_margin_is_measured() {
         let atlas = Atlas::parse(CSV).expect("the committed atlas reads");
@@ -386,12 +397,7 @@ mod tests {
 
     #[test]
     fn an_angle_between_two_takes_the_larger_error_and_the_held_out_margin() {
-        let text = csv(&[
-            ("atlas", 0.0, law(0.4)),
-            ("atlas", 10.0, law(0.2)),
-            ("held-out", 5.0, law(0.5)),
-        ]);
-        let atlas = Atlas::parse(&text).unwrap();
+        let atlas = two_angles_and_5_degrees_held_out(0.5);
         assert!((atlas.margin - 1.25).abs() < 1e-12);
         let model = atlas
             .model(&Scene::Release { angle_deg: 7.0 }, 3.0, 1e-3)
@@ -418,12 +424,7 @@ mod tests {
 
     #[test]
     fn at_an_atlas_angle_the_fewest_measured_n_whose_bound_holds_is_chosen_without_the_margin() {
-        let text = csv(&[
-            ("atlas", 0.0, law(0.4)),
-            ("atlas", 10.0, law(0.2)),
-            ("held-out", 5.0, law(0.8)),
-        ]);
-        let atlas = Atlas::parse(&text).unwrap();
+        let atlas = two_angles_and_5_degrees_held_out(0.8);
         assert!((atlas.margin - 2.0).abs() < 1e-12);
         let at = |angle_deg, eps| {
             let model = atlas.model(&Scene::Release { angle_deg }, 3.0, eps)?;
