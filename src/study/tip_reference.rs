@@ -71,8 +71,29 @@ impl TipReference {
         let [half, coarse, fine]: [Trajectory; 3] = runs
             .try_into()
             .map_err(|_| anyhow::anyhow!("three reference runs expected"))?;
-        let mut reference = Self::of(method, *scene, half, coarse, fine, segments, duration);
-        while reference.own_error > target && 2 * reference.segments <= most {
+        Self::of(method, *scene, half, coarse, fine, segments, duration).doubled_while(
+            target,
+            most,
+            |_| true,
+        )
+    }
+
+    /// This reference, N doubled on while its own error is above `target`, N is below `most`
+    /// and the doubling [`could_reach`](TipReference::could_reach) `target` by `most`.
+    pub fn refined_where_reachable(self, target: f64, most: usize) -> anyhow::Result<Self> {
+        self.doubled_while(target, most, |r| r.could_reach(target, most))
+    }
+
+    /// This reference, N doubled while its own error is above `target`, 2N is at most `most`
+    /// and `worth` says the next doubling may pay.
+    fn doubled_while(
+        self,
+        target: f64,
+        most: usize,
+        worth: impl Fn(&Self) -> bool,
+    ) -> anyhow::Result<Self> {
+        let mut reference = self;
+        while reference.own_error > target && 2 * reference.segments <= most && worth(&reference) {
             reference = reference.doubled()?;
         }
         Ok(reference)

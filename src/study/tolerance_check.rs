@@ -229,23 +229,17 @@ pub fn check(spec: &CheckSpec, tick: impl Fn() + Sync) -> anyhow::Result<Checked
         .par_iter()
         .map(|scene| {
             let target = REFERENCE_MARGIN * smallest;
-            let mut reference = TipReference::refined_by(
+            let reference = TipReference::refined_by(
                 reference_method(scene),
                 scene,
                 spec.reference_segments,
                 spec.reference_segments_max,
                 target,
                 spec.duration,
-            )?;
-            let reach = spec.reference_segments_reach;
-            while reference.own_error > target
-                && 2 * reference.segments <= reach
-                && reference.could_reach(target, reach)
-            {
-                reference = reference.doubled()?;
-            }
+            )?
+            .refined_where_reachable(target, spec.reference_segments_reach);
             tick();
-            Ok(reference)
+            reference
         })
         .collect::<anyhow::Result<Vec<_>>>()?;
     for reference in &references {
