@@ -10,7 +10,11 @@
 //! step, against the graded rods extrapolated from N = 800, 1600 and 3200, from 20° up
 //! ([`GRADED_FROM`]); `scripts/release-atlas.sh graded` writes
 //! `assets/release-atlas/graded-atlas.csv`. `release_atlas graded 30,40`: those angles' rows
-//! alone.
+//! alone, measured in that order (each angle's rows are printed as soon as they are done).
+//!
+//! `release_atlas graded --until 5`: the graded rods' worst tip error to t = 5, from 40° up
+//! ([`LONGER_FROM`]), against references refined towards [`LONGER_REFINED_TO`], once at most;
+//! `scripts/release-atlas.sh graded --until 5` writes `assets/release-atlas/graded-atlas-t5.csv`.
 //!
 //! A reference whose own error is above [`REFINED_TO`] is made from N = 1600, 3200 and 6400
 //! instead. The graded rods' is doubled once more (to at most [`TWICE_REFINED`]) where it
@@ -22,10 +26,11 @@ use rayon::prelude::*;
 use rope::methods::MethodKind;
 use rope::model::Scene;
 use rope::plan::atlas::{
-    ATLAS_ANGLES, Atlas, GRADED_FROM, HELD_OUT_ANGLES, SEGMENTS, WINDOW, trusted,
+    ATLAS_ANGLES, Atlas, GRADED_FROM, HELD_OUT_ANGLES, LONGER_FROM, SEGMENTS, WINDOW, trusted,
 };
 use rope::study::tip_reference::TipReference;
 use rope::study::tolerance_check::measure;
+use std::io::Write;
 
 /// The reference's N: runs at N/2, N and 2N.
 const REFERENCE_SEGMENTS: usize = 1600;
@@ -43,47 +48,91 @@ const REFINED_SEGMENTS: usize = 2 * REFERENCE_SEGMENTS;
 /// (`docs/measurements.md`).
 const TWICE_REFINED: usize = 2 * REFINED_SEGMENTS;
 
+/// The own error a reference of a longer window ([`WINDOW`] < `--until`) is refined towards.
+const LONGER_REFINED_TO: f64 = 1e-5;
+
 /// A reference's own error below this is round-off (the vertical release hangs still): no
 /// doubling can make the atlas trust errors of that size.
 const ROUND_OFF: f64 = 1e-12;
 
 fn main() -> anyhow::Result<()> {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let (method, from) = match args.first().map(String::as_str) {
-        None => (MethodKind::Chain, 0.0),
-        Some("graded") => (MethodKind::Graded, GRADED_FROM),
-        Some(other) => anyhow::bail!("usage: release_atlas [graded [ANGLES]] ({other:?} given)"),
-    };
+    let mut method = MethodKind::Chain;
+    let mut window = WINDOW;
     // Only these angles, where given (to remeasure some rows).
-    let only: Option<Vec<f64>> = match args.get(1) {
-        Some(list) => Some(list.split(',').map(str::parse).collect::<Result<_, _>>()?),
-        None => None,
+    let mut only: Option<Vec<f64>> = None;
+    let mut args = std::env::args().skip(1);
+    while let Some(arg) = args.next() {
+        match arg.as_str() {
+            "graded" => method = MethodKind::Graded,
+            "--until" => {
+                let value = args.next().unwrap_or_default();
+                window = value
+                    .parse()
+                    .ok()
+                    .filter(|w: &f64| w.is_finite() && *w > 0.0)
+                    .ok_or_else(|| {
+                        anyhow::anyhow!("--until takes a duration > 0 ({value:?} given)")
+                    })?;
+            }
+            list if only.is_none() && list.starts_with(|c: char| c.is_ascii_digit()) => {
+                only = Some(list.split(',').map(str::parse).collect::<Result<_, _>>()?);
+            }
+            other => anyhow::bail!(
+                "usage: release_atlas [graded] [--until T] [ANGLES] ({other:?} given)"
+            ),
+        }
+    }
+    let from = match method {
+        MethodKind::Graded if window > WINDOW => LONGER_FROM,
+        MethodKind::Graded => GRADED_FROM,
+        _ => 0.0,
     };
-    let angles: Vec<(&str, f64)> = ATLAS_ANGLES
+    // Past t = 3 the atlas serves tolerances of 1e-3 and so (its entries near 1e-4 need a
+    // reference within 1e-5), refined once at most: the further doubling weighs what the
+    // atlas to t = 3 needs, so it is for that atlas alone.
+    let (refined_to, twice_refined) = match window > WINDOW {
+        false => (REFINED_TO, TWICE_REFINED),
+        true => (LONGER_REFINED_TO, 0),
+    };
+    let set = |a: f64| match HELD_OUT_ANGLES.contains(&a) {
+        true => "held-out",
+        false => "atlas",
+    };
+    // The angles given, in their order (the first measured first), else every angle.
+    let every = ATLAS_ANGLES.iter().chain(&HELD_OUT_ANGLES).copied();
+    let angles: Vec<(&str, f64)> = match &only {
+        Some(only) => only.iter().copied().map(|a| (set(a), a)).collect(),
+        None => every.map(|a| (set(a), a)).collect(),
+    };
+    if let Some(&(_, a)) = angles
         .iter()
-        .map(|&a| ("atlas", a))
-        .chain(HELD_OUT_ANGLES.iter().map(|&a| ("held-out", a)))
-        .filter(|&(_, a)| a >= from)
-        .filter(|(_, a)| only.as_ref().is_none_or(|o| o.contains(a)))
-        .collect();
-    let rows = angles
-        .par_iter()
-        .map(|&(set, angle_deg)| {
+        .find(|&&(_, a)| a < from || !ATLAS_ANGLES.iter().chain(&HELD_OUT_ANGLES).any(|&m| m == a))
+    {
+        anyhow::bail!("{a}° is not an atlas or held-out angle from {from}° up");
+    }
+    // Each angle's rows are printed as soon as they are measured, so that a run stopped
+    // early keeps the angles it finished.
+    println!("set,angle_deg,segments,worst,reference_segments,reference_own_error");
+    let stdout = std::sync::Mutex::new(std::io::stdout());
+    angles
+        .into_iter()
+        .par_bridge()
+        .try_for_each(|(set, angle_deg)| -> anyhow::Result<()> {
             let scene = Scene::Release { angle_deg };
             let mut reference = TipReference::refined_by(
                 method,
                 &scene,
                 REFERENCE_SEGMENTS,
                 REFINED_SEGMENTS,
-                REFINED_TO,
-                WINDOW,
+                refined_to,
+                window,
             )?;
             let row = |reference: &TipReference| -> Vec<(usize, f64)> {
                 SEGMENTS
                     .iter()
                     .map(|&n| {
                         let dt = method.tolerance_dt(n);
-                        let worst = measure(method, &scene, n, dt, WINDOW, false, reference)
+                        let worst = measure(method, &scene, n, dt, window, false, reference)
                             .map_or(f64::NAN, |m| m.worst);
                         (n, worst)
                     })
@@ -91,7 +140,7 @@ fn main() -> anyhow::Result<()> {
             };
             let mut worst = row(&reference);
             if method == MethodKind::Graded
-                && reference.segments * 2 <= TWICE_REFINED
+                && reference.segments * 2 <= twice_refined
                 && reference.own_error > ROUND_OFF
                 && keeps_out(set, angle_deg, &worst, reference.own_error)
             {
@@ -115,13 +164,13 @@ fn main() -> anyhow::Result<()> {
                     )
                 })
                 .collect();
-            Ok(lines)
-        })
-        .collect::<anyhow::Result<Vec<_>>>()?;
-    println!("set,angle_deg,segments,worst,reference_segments,reference_own_error");
-    for line in rows.into_iter().flatten() {
-        println!("{line}");
-    }
+            let mut out = stdout
+                .lock()
+                .map_err(|_| anyhow::anyhow!("stdout poisoned"))?;
+            writeln!(out, "{}", lines.join("\n"))?;
+            out.flush()?;
+            Ok(())
+        })?;
     Ok(())
 }
 

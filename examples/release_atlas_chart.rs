@@ -2,24 +2,28 @@
 //! `assets/release-atlas/atlas.png` and `.svg`, and prints its margin and a Markdown table of
 //! its trusted entries (what `docs/measurements.md` quotes); run by
 //! `scripts/release-atlas.sh` after the atlas is measured. `release_atlas_chart graded`: the
-//! graded rods' (`graded-atlas.csv`, `graded-atlas.png` and `.svg`).
+//! graded rods' (`graded-atlas.csv`, `graded-atlas.png` and `.svg`); `release_atlas_chart
+//! graded --until 5`: theirs to t = 5 (`graded-atlas-t5.csv`, `.png`, `.svg`).
 
 use anyhow::Context;
-use rope::plan::atlas::Atlas;
+use rope::plan::atlas::{Atlas, LONGER_WINDOW, WINDOW};
 use std::collections::HashMap;
 use std::path::Path;
 
 fn main() -> anyhow::Result<()> {
-    let (name, rods) = match std::env::args().nth(1).as_deref() {
-        None => ("atlas", "the rods'"),
-        Some("graded") => ("graded-atlas", "the graded rods'"),
-        Some(other) => anyhow::bail!("usage: release_atlas_chart [graded] ({other:?} given)"),
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let (name, rods, window) = match args.as_slice() {
+        [] => ("atlas", "the rods'", WINDOW),
+        ["graded"] => ("graded-atlas", "the graded rods'", WINDOW),
+        ["graded", "--until", "5"] => ("graded-atlas-t5", "the graded rods'", LONGER_WINDOW),
+        other => anyhow::bail!("usage: release_atlas_chart [graded [--until 5]] ({other:?} given)"),
     };
     let dir = Path::new("assets/release-atlas");
     let path = dir.join(format!("{name}.csv"));
     let text =
         std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
-    let atlas = Atlas::parse(&text)?;
+    let atlas = Atlas::parse(&text, window)?;
     rope::study::charts::register_font()?;
     rope::study::atlas_chart::write(dir, name, rods, &atlas)?;
     println!(

@@ -352,14 +352,15 @@ fn a_scene_its_pilots_show_cheaper_is_run_from_their_model_and_holds() {
     );
 }
 
-/// Past t = 3 (the window the committed models were measured over) the pilots rule: from 45°
-/// to t = 5 the law fitted to t ≤ 3 once asked N = 491 where the pilots measured about
-/// 0.93/N, and the run missed 1e-3 after t = 4.88. The choice now asks at least what the
-/// pilots' own model asks, and to t = 3 the committed model may still be the tighter.
+/// Past the windows the committed models were measured over (t = 3, and t = 5 for the graded
+/// rods' longer atlas) the pilots rule: from 45° to t = 5 the law fitted to t ≤ 3 once asked
+/// N = 491 where the pilots measured about 0.93/N, and the run missed 1e-3 after t = 4.88.
+/// The choice now asks at least what the pilots' own model asks, and within its window the
+/// committed model may still be the tighter.
 #[test]
 fn past_the_committed_window_the_pilots_measured_figure_rules() {
     let scene = Scene::Release { angle_deg: 45.0 };
-    let (choice, pilots) = pilot::choose(1e-3, &scene, 5.0, 60.0, u64::MAX).unwrap();
+    let (choice, pilots) = pilot::choose(1e-3, &scene, 6.0, 60.0, u64::MAX).unwrap();
     assert!(
         matches!(pilots.basis, pilot::Basis::OwnModel | pilot::Basis::Held),
         "{:?}",
@@ -381,9 +382,44 @@ fn past_the_committed_window_the_pilots_measured_figure_rules() {
         choice.segments,
         own.segments_for(1e-3)
     );
-    // The test is of a run past the window; were the window to grow past 5, it would test
-    // nothing.
-    const { assert!(5.0 > tolerance::COMMITTED_UNTIL) };
+    // The test is of a run past every window; were one to grow past 6, it would test nothing.
+    const { assert!(6.0 > atlas::LONGER_WINDOW && 6.0 > tolerance::LAW_UNTIL) };
+}
+
+/// From t = 3 to 5 the chain's one law, fitted to t ≤ 3, does not cover the run, and the
+/// graded rods' atlas to t = 5 does: from 45° to t = 5 at 1e-3 it chooses the graded rods, at
+/// no more segments than the pilots' own model would ask of them (it measured the whips after
+/// t = 3 up to N = 1131, which the pilots see only to N = 64).
+#[test]
+fn from_45_degrees_to_t_5_the_graded_rods_longer_atlas_covers_the_run_and_the_law_does_not() {
+    let scene = Scene::Release { angle_deg: 45.0 };
+    let models = tolerance::Committed::look_up(&scene, 5.0, 1e-3);
+    assert!(!models.covers(MethodKind::Chain));
+    assert!(models.covers(MethodKind::Graded));
+    assert_eq!(models.source(MethodKind::Graded), tolerance::Source::Atlas);
+    // The committed choice alone is made of the models that cover the run: the chain's law,
+    // whose run would be predicted the cheaper, is not among them.
+    let committed = tolerance::choose(1e-3, 5.0, &scene, |_, _, _| true).unwrap();
+    assert_eq!(committed.method, MethodKind::Graded, "{committed:?}");
+    let law = MethodKind::Chain.descriptor().error_model;
+    let by_law = tolerance::by_model(MethodKind::Chain, &law, 1e-3, 16, 5.0);
+    assert!(
+        by_law.predicted_seconds < committed.predicted_seconds,
+        "{committed:?}"
+    );
+    let (choice, pilots) = pilot::choose(1e-3, &scene, 5.0, 60.0, u64::MAX).unwrap();
+    assert_eq!(choice.method, MethodKind::Graded, "{choice:?}");
+    assert_eq!(pilots.basis, pilot::Basis::Atlas);
+    assert!(
+        choice.segments <= atlas::SEGMENTS[atlas::SEGMENTS.len() - 1],
+        "{choice:?}"
+    );
+    // To t = 3 the shorter atlas serves: its window is the shortest that covers the run.
+    let shorter = atlas::Atlas::of(MethodKind::Graded, 3.0).unwrap();
+    assert_eq!(shorter.window, atlas::WINDOW);
+    let longer = atlas::Atlas::of(MethodKind::Graded, 5.0).unwrap();
+    assert_eq!(longer.window, atlas::LONGER_WINDOW);
+    assert!(atlas::Atlas::of(MethodKind::Chain, 5.0).is_none());
 }
 
 #[test]
@@ -452,8 +488,8 @@ fn a_release_from_30_degrees_holds_1e_4_against_the_graded_reference_at_every_fr
     thirty_degrees_holds("1e-4", &graded_reference(30.0, 3.0, 1e-5));
 }
 
-/// `rope run --angle 45 --tolerance 1e-3 --duration 5`, past the atlases' t = 3 (the pilots'
-/// model rules), against the graded rods at N = 800, 1600, 3200 to t = 5, extrapolated.
+/// `rope run --angle 45 --tolerance 1e-3 --duration 5`, chosen from the graded rods' atlas to
+/// t = 5, against the graded rods at N = 800, 1600, 3200 to t = 5, extrapolated.
 /// `cargo test --release --test pilots -- --ignored a_release_from_45_degrees --nocapture`
 /// (about five minutes of CPU).
 #[test]
@@ -464,9 +500,13 @@ fn a_release_from_45_degrees_over_5_units_holds_1e_3_against_the_graded_referenc
     let (s, _) = tolerance_run("pilot-45-5", &flags);
     let worst = worst_tip_error(&s["tip_samples"], |t| reference.at(t));
     let (method, segments) = (&s["method"], &s["segments"]);
-    eprintln!("45° to t = 5, 1e-3: {method} at N = {segments}, worst tip error {worst:.2e}");
+    // Against the truth: the error against the reference plus the reference's own.
+    let bound = worst + reference.own_error;
+    eprintln!(
+        "45° to t = 5, 1e-3: {method} at N = {segments}, worst tip error {worst:.2e} against the reference, at most {bound:.2e}"
+    );
     assert!(
-        worst <= 1e-3,
-        "worst tip error {worst:.2e} with {method} at N = {segments}"
+        bound <= 1e-3,
+        "worst tip error at most {bound:.2e} with {method} at N = {segments}"
     );
 }

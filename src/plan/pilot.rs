@@ -157,7 +157,7 @@ impl Basis {
                 "the committed error model, here tighter than the pilots' own (measured at N ≤ 64)"
             }
             Self::Atlas => {
-                "the release atlas of the chosen rods: their worst error to t = 3 measured at the release angles 10° apart (the chain's rods from 0° up to N = 566, the graded rods from 20° up to N = 1131), at this angle's own N where it is one of them, else from its two neighbours times the margin the angles between them showed (`scripts/release-atlas.sh`)"
+                "the release atlas of the chosen rods: their worst error to t = 3 measured at the release angles 10° apart (the chain's rods from 0° up to N = 566, the graded rods from 20° up to N = 1131, and to t = 5 from 40° for a longer run), at this angle's own N where the atlas measured it (one of those angles, or of the 5°, 15°, …, 85° between them), else from its two neighbours times the margin the angles between them showed (`scripts/release-atlas.sh`)"
             }
             Self::Committed => {
                 "the committed error model, fitted to t = 3 over six scenes by `rope study --estimate-check`, no cheaper run found by the pilots that were worth their cost"
@@ -271,7 +271,7 @@ fn climb(
             let modelled = cheapest_modelled(eps, duration, models, &pilots, &seconds, fits);
             // Past the committed models' window, what the pilots measured rules.
             best = match (modelled, by_committed) {
-                (Some(m), Some(c)) if c.seconds < m.seconds && committed_covers(duration) => {
+                (Some(m), Some(c)) if c.seconds < m.seconds && models.covers(c.choice.method) => {
                     Some(c)
                 }
                 (Some(m), _) => Some(m),
@@ -296,7 +296,7 @@ fn cheapest_modelled(
         .iter()
         .filter_map(|pilot| {
             let method = pilot.method;
-            let model = tighter_model(method, eps, duration, models, pilots)?;
+            let model = tighter_model(method, eps, models, pilots)?;
             let choice = tolerance::by_model(method, &model, eps, LEVELS[0], duration);
             if !fits(method, choice.segments, choice.dt) {
                 return None;
@@ -337,17 +337,11 @@ fn own_model(method: MethodKind, measured: &[(usize, f64)]) -> Option<ErrorModel
     })
 }
 
-/// Whether the committed models were measured over a run of `duration`
-/// ([`tolerance::COMMITTED_UNTIL`]): past it they may not overrule a looser figure the
-/// pilots measured over the run's own time (from 45° to t = 5, the law fitted to t ≤ 3 asked
-/// N = 491 where the pilots' 0.93/N was near the truth, and the run missed 1e-3).
-fn committed_covers(duration: f64) -> bool {
-    duration <= tolerance::COMMITTED_UNTIL
-}
-
 /// Of `method`'s own model (from its pilots) and its committed one (in `models`, for this
 /// scene, duration and tolerance: [`Committed::look_up`]), the one that asks fewer segments for `eps`, the
-/// committed one only where it covers the run's duration; `None` without an own model. Both
+/// committed one only where it was measured over the run's duration ([`Committed::covers`]:
+/// from 45° to t = 5, the law fitted to t ≤ 3 asked N = 491 where the pilots' 0.93/N was near
+/// the truth, and the run missed 1e-3); `None` without an own model. Both
 /// bound measured errors: the own model the scene's at N ≤ 64, extrapolated; the committed one the release atlas's at this angle or its neighbours, or the
 /// worst of six scenes, up to large N. Where a whip's error constant falls at large N, which
 /// the pilots cannot see, the committed model is the tighter (from 30°: 0.49/N against the
@@ -355,14 +349,13 @@ fn committed_covers(duration: f64) -> bool {
 pub fn tighter_model(
     method: MethodKind,
     eps: f64,
-    duration: f64,
     models: &Committed,
     pilots: &[Pilot],
 ) -> Option<ErrorModel> {
     let own = pilots.iter().find(|p| p.method == method)?.model?;
     let committed = models.model(method);
     Some(
-        if committed_covers(duration) && committed.segments_for(eps) < own.segments_for(eps) {
+        if models.covers(method) && committed.segments_for(eps) < own.segments_for(eps) {
             committed
         } else {
             own

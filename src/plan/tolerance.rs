@@ -44,7 +44,8 @@ pub fn choose(
 }
 
 /// As [`choose`], with the committed models already looked up for this scene, duration and
-/// tolerance.
+/// tolerance: of the models measured over the whole duration ([`Committed::covers`]) where one
+/// of them reaches `tolerance`, else of all.
 pub fn choose_committed(
     tolerance: f64,
     duration: f64,
@@ -52,8 +53,10 @@ pub fn choose_committed(
     committed: &Committed,
     fits: impl Fn(MethodKind, usize, f64) -> bool,
 ) -> Option<Choice> {
-    let model_of = |m: MethodKind| Some(committed.model(m));
-    choose_with(tolerance, duration, scene, model_of, MIN_SEGMENTS, fits)
+    let covering = |m: MethodKind| committed.covers(m).then(|| committed.model(m));
+    let any = |m: MethodKind| Some(committed.model(m));
+    choose_with(tolerance, duration, scene, covering, MIN_SEGMENTS, &fits)
+        .or_else(|| choose_with(tolerance, duration, scene, any, MIN_SEGMENTS, &fits))
 }
 
 /// Where a method's committed error model comes from.
@@ -70,6 +73,7 @@ pub enum Source {
 #[derive(Clone, Debug)]
 pub struct Committed {
     models: Vec<(MethodKind, ErrorModel, Source)>,
+    duration: f64,
 }
 
 impl Committed {
@@ -86,7 +90,15 @@ impl Committed {
                 },
             )
             .collect();
-        Self { models }
+        Self { models, duration }
+    }
+
+    /// Whether `method`'s committed model was measured over the run's whole duration: an
+    /// atlas's always (one serves only runs within its window), the one law up to
+    /// [`LAW_UNTIL`]. One that does not may not overrule a looser figure the pilots measured
+    /// over the run's own time.
+    pub fn covers(&self, method: MethodKind) -> bool {
+        self.source(method) == Source::Atlas || self.duration <= LAW_UNTIL
     }
 
     /// `method`'s committed model.
@@ -107,22 +119,22 @@ impl Committed {
     }
 }
 
-/// The longest run the committed error models were measured over: the release atlas's
-/// window, and the six scenes the methods' laws were fitted to, both to t = 3. Past it a
-/// committed model may not overrule the pilots, which measure the run's own duration.
-pub const COMMITTED_UNTIL: f64 = super::atlas::WINDOW;
+/// The longest run the methods' one laws were measured over: the six scenes they were fitted
+/// to, to t = 3, as the shorter release atlases. Past it a law may not overrule the pilots,
+/// which measure the run's own duration.
+pub const LAW_UNTIL: f64 = super::atlas::WINDOW;
 
 /// The release atlas's error model for `method` from `scene` to `duration` at `tolerance`:
-/// `None` unless the method is of rods an atlas measured (the chain's, or the graded rods:
-/// [`Atlas::of`]), the scene a release, the run within the atlas's window and the tolerance
-/// within its N.
+/// `None` unless the method is of rods an atlas measured over at least `duration` (the
+/// chain's to t = 3, or the graded rods' to t = 3 or 5: [`Atlas::of`]), the scene a release
+/// and the tolerance within its N.
 pub fn from_atlas(
     method: MethodKind,
     scene: &Scene,
     duration: f64,
     tolerance: f64,
 ) -> Option<ErrorModel> {
-    Atlas::of(method)?.model(scene, duration, tolerance)
+    Atlas::of(method, duration)?.model(scene, duration, tolerance)
 }
 
 /// As [`choose`], with each method's error model given by `model_of` (the scene's own, from

@@ -1,0 +1,272 @@
+//! The atlas's rules on small made-up atlases, and the committed ones read.
+
+use super::*;
+
+fn csv(rows: &[(&str, f64, [f64; SEGMENTS.len()])]) -> String {
+    let mut text =
+        "set,angle_deg,segments,worst,reference_segments,reference_own_error\n".to_owned();
+    for (set, angle, errors) in rows {
+        for (n, e) in SEGMENTS.iter().zip(errors) {
+            text += &format!("{set},{angle},{n},{e:e},1600,0\n");
+        }
+    }
+    text
+}
+
+/// Errors c/N at every N.
+fn law(c: f64) -> [f64; SEGMENTS.len()] {
+    SEGMENTS.map(|n| c / n as f64)
+}
+
+/// The atlas of errors 0.4/N at 0° and 0.2/N at 10°, and `held_out`/N at 5°: its margin
+/// `held_out` / 0.4.
+fn two_angles_and_5_degrees_held_out(held_out: f64) -> Atlas {
+    let text = csv(&[
+        ("atlas", 0.0, law(0.4)),
+        ("atlas", 10.0, law(0.2)),
+        ("held-out", 5.0, law(held_out)),
+    ]);
+    Atlas::parse(&text, WINDOW).expect("the atlas reads")
+}
+
+#[test]
+fn the_committed_atlas_reads_and_its_margin_is_measured() {
+    let atlas = Atlas::parse(CSV, WINDOW).expect("the committed atlas reads");
+    assert_eq!(atlas.rows.len(), ATLAS_ANGLES.len());
+    assert_eq!(atlas.held_out.len(), HELD_OUT_ANGLES.len());
+    assert!(
+        atlas.margin >= 1.0 && atlas.margin < 2.0,
+        "{}",
+        atlas.margin
+    );
+}
+
+#[test]
+fn the_committed_longer_graded_atlas_reads_from_40_degrees_and_serves_to_t_5_only() {
+    let atlas = Atlas::committed_graded_longer().expect("it reads");
+    let shorter = Atlas::committed_graded().expect("it reads");
+    assert!(
+        atlas.margin >= shorter.margin,
+        "{} < {}",
+        atlas.margin,
+        shorter.margin
+    );
+    let angles = atlas
+        .rows
+        .iter()
+        .chain(&atlas.held_out)
+        .map(|r| r.angle_deg);
+    assert!(
+        angles.clone().all(|a| a >= LONGER_FROM),
+        "{:?}",
+        angles.collect::<Vec<_>>()
+    );
+    let release = Scene::Release { angle_deg: 45.0 };
+    assert!(atlas.model(&release, LONGER_WINDOW, 1e-2).is_some());
+    assert!(atlas.model(&release, LONGER_WINDOW + 0.1, 1e-2).is_none());
+}
+
+#[test]
+fn the_committed_graded_atlas_reads_from_20_degrees_and_the_law_bounds_it() {
+    let atlas = Atlas::parse(GRADED_CSV, WINDOW).expect("the committed graded atlas reads");
+    assert!(atlas.rows.iter().all(|r| r.angle_deg >= GRADED_FROM));
+    assert!(atlas.margin >= 1.0, "{}", atlas.margin);
+    // With its margin it still reaches 1e-4 from 20° to 40° (where the law asks N = 4 901),
+    // within the N it measured.
+    for angle_deg in [20.0, 30.0, 40.0] {
+        let model = atlas
+            .model(&Scene::Release { angle_deg }, 3.0, 1e-4)
+            .unwrap_or_else(|| panic!("{angle_deg}°: no model at 1e-4"));
+        assert!(model.segments_for(1e-4) <= SEGMENTS[SEGMENTS.len() - 1]);
+    }
+    // The graded rods borrow the chain's one law: it bounds every trusted entry.
+    let law = MethodKind::Graded.descriptor().error_model;
+    for (angle, points) in atlas.rows() {
+        for (n, error) in points {
+            assert!(error <= law.bound(n), "{angle}° at N = {n}: {error:e}");
+        }
+    }
+}
+
+/// The held-out rows are measurements at angles the atlas's rows do not include: wherever
+/// the law interpolated from its neighbours claims to hold at a held-out angle, that
+/// angle's own row must not show an error past the tolerance (at least: the measured error
+/// less its reference's own). (The choice there is its own row's: this tests the law every
+/// angle between two atlas angles gets.)
+#[test]
+fn the_interpolated_law_at_each_held_out_angle_holds_where_that_angle_was_measured() {
+    for (name, text, window) in [
+        ("chain", CSV, WINDOW),
+        ("graded", GRADED_CSV, WINDOW),
+        ("graded to t = 5", GRADED_LONGER_CSV, LONGER_WINDOW),
+    ] {
+        let atlas = Atlas::parse(text, window).expect("the committed atlas reads");
+        for held in &atlas.held_out {
+            for tolerance in [1e-2, 3e-3, 1e-3, 3e-4, 1e-4] {
+                let Some(model) = atlas.interpolated(held.angle_deg, tolerance) else {
+                    continue;
+                };
+                let chosen = model.segments_for(tolerance);
+                for (n, floor) in SEGMENTS.iter().zip(held.floor) {
+                    let at_least = floor.unwrap_or(0.0);
+                    assert!(
+                        *n < chosen || at_least <= tolerance,
+                        "{name}, {}° at {tolerance:e}: N = {chosen} chosen, but at N = {n} \
+                         the error is at least {at_least:.2e}",
+                        held.angle_deg
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn an_angle_between_two_takes_the_larger_error_and_the_held_out_margin() {
+    let atlas = two_angles_and_5_degrees_held_out(0.5);
+    assert!((atlas.margin - 1.25).abs() < 1e-12);
+    let model = atlas
+        .model(&Scene::Release { angle_deg: 7.0 }, 3.0, 1e-3)
+        .unwrap();
+    // 0.4 × 1.25 / 1e-3 = 500 segments.
+    assert_eq!(model.segments_for(1e-3), 500);
+    // Past the atlas's N, in a mode, or past its window: no model.
+    assert!(
+        atlas
+            .model(&Scene::Release { angle_deg: 7.0 }, 3.0, 1e-4)
+            .is_none()
+    );
+    assert!(
+        atlas
+            .model(&Scene::Release { angle_deg: 7.0 }, 3.5, 1e-3)
+            .is_none()
+    );
+    let mode = Scene::Mode {
+        number: 1,
+        amplitude: 0.05,
+    };
+    assert!(atlas.model(&mode, 3.0, 1e-3).is_none());
+}
+
+#[test]
+fn at_an_atlas_angle_the_fewest_measured_n_whose_bound_holds_is_chosen_without_the_margin() {
+    let atlas = two_angles_and_5_degrees_held_out(0.8);
+    assert!((atlas.margin - 2.0).abs() < 1e-12);
+    let at = |angle_deg, eps| {
+        let model = atlas.model(&Scene::Release { angle_deg }, 3.0, eps)?;
+        Some(model.segments_for(eps))
+    };
+    // At 10°, 0.2/N is within 1e-3 from N = 200, which the atlas measured; the law times
+    // the margin would ask for 400.
+    assert_eq!(at(10.0, 1e-3), Some(200));
+    // Within 1.5e-3 from N = 133.3: the next measured, 141 (the law times the margin: 267).
+    assert_eq!(at(10.0, 1.5e-3), Some(141));
+    // Where the law times the margin asks fewer than the next measured N, the law: with no
+    // held-out angle (a margin of 1), 1e-2 from 0.2/N asks for 20, where the next measured
+    // N is 25.
+    let no_margin = Atlas::parse(
+        &csv(&[("atlas", 0.0, law(0.4)), ("atlas", 10.0, law(0.2))]),
+        WINDOW,
+    )
+    .unwrap();
+    let model = no_margin.model(&Scene::Release { angle_deg: 10.0 }, 3.0, 1e-2);
+    assert_eq!(model.map(|m| m.segments_for(1e-2)), Some(20));
+    // Between two atlas angles, the margin: 0.4 × 2 / 1e-3.
+    assert_eq!(at(7.0, 1e-3), Some(800));
+    // At 0°, 0.4/N is within 1e-4 only from N = 4 000, past what was measured: no model.
+    assert_eq!(at(0.0, 1e-4), None);
+}
+
+#[test]
+fn at_a_held_out_angle_its_own_row_is_chosen_without_the_margin() {
+    // 5° errs by 0.2/N, below its neighbours' 0.4/N; 15° by 0.4/N, twice theirs (0.2/N):
+    // the margin is 2.
+    let text = csv(&[
+        ("atlas", 0.0, law(0.4)),
+        ("atlas", 10.0, law(0.2)),
+        ("atlas", 20.0, law(0.2)),
+        ("held-out", 5.0, law(0.2)),
+        ("held-out", 15.0, law(0.4)),
+    ]);
+    let atlas = Atlas::parse(&text, WINDOW).unwrap();
+    assert!((atlas.margin - 2.0).abs() < 1e-12);
+    let at = |angle_deg: f64| {
+        let model = atlas.model(&Scene::Release { angle_deg }, 3.0, 1e-3)?;
+        Some(model.segments_for(1e-3))
+    };
+    // At 5° its own 0.2/N holds 1e-3 from N = 200; the law from 0° and 10° with the margin
+    // would ask 0.4 × 2 / 1e-3 = 800. A hair off it, the law.
+    assert_eq!(at(5.0), Some(200));
+    assert_eq!(at(5.5), Some(800));
+    // At 15° its own 0.4/N asks 400 (the next measured N past 400: 400 itself); the law
+    // from 10° and 20° with the margin the same, 0.2 × 2 / 1e-3 = 400.
+    assert_eq!(at(15.0), Some(400));
+}
+
+#[test]
+fn an_untrusted_held_out_error_still_raises_the_margin_by_what_it_is_at_least() {
+    let mut text = csv(&[("atlas", 0.0, law(0.4)), ("atlas", 10.0, law(0.2))]);
+    // The 5° row errs by 0.4/N, but at N = 566 by 0.9/N against a reference whose own
+    // error is 2e-4 (untrusted): the error there is at least (0.9/566 − 2e-4), 1.97 times
+    // its neighbours'.
+    for (n, e) in SEGMENTS.iter().zip(law(0.4)) {
+        let (e, own) = match *n == 566 {
+            true => (0.9 / 566.0, 2e-4),
+            false => (e, 0.0),
+        };
+        text += &format!("held-out,5,{n},{e:e},1600,{own:e}\n");
+    }
+    let atlas = Atlas::parse(&text, WINDOW).unwrap();
+    let expected = (0.9 / 566.0 - 2e-4) / (0.4 / 566.0);
+    assert!((atlas.margin - expected).abs() < 1e-9, "{}", atlas.margin);
+    // An entry that errs by less than its reference's own says nothing.
+    let quiet = text.replace(
+        &format!("{:e},1600,{:e}", 0.9 / 566.0, 2e-4),
+        "1e-4,1600,2e-4",
+    );
+    assert_eq!(Atlas::parse(&quiet, WINDOW).unwrap().margin, 1.0);
+}
+
+#[test]
+fn a_constant_that_falls_with_n_is_used_only_from_where_it_falls() {
+    // 0.4/N up to N = 100, then 0.2/N: 1e-3 needs N = 200 from the smaller constant
+    // (0.2 / 1e-3), though 0.2 / 1.2e-3 alone would ask for 167 < 200 … from N = 141 up.
+    let mut errors = law(0.4);
+    for (e, n) in errors.iter_mut().zip(SEGMENTS) {
+        if n >= 141 {
+            *e = 0.2 / n as f64;
+        }
+    }
+    let atlas = Atlas::parse(
+        &csv(&[("atlas", 0.0, errors), ("atlas", 10.0, errors)]),
+        WINDOW,
+    )
+    .unwrap();
+    let at = |eps| {
+        atlas
+            .model(&Scene::Release { angle_deg: 0.0 }, 3.0, eps)
+            .unwrap()
+            .segments_for(eps)
+    };
+    assert_eq!(at(1e-3), 200);
+    // 1.6e-3 would need 125 by the smaller constant: it bounds only from 141 up.
+    assert_eq!(at(1.6e-3), 141);
+    // 1e-2: 40 by the larger constant, which bounds every N.
+    assert_eq!(at(1e-2), 40);
+}
+
+#[test]
+fn an_entry_whose_reference_is_too_coarse_ends_the_row() {
+    let mut text = csv(&[("atlas", 10.0, law(0.2))]);
+    // The 0° row: its reference's own error 1e-3, above a tenth of every error past N = 50.
+    for (n, e) in SEGMENTS.iter().zip(law(0.5)) {
+        text += &format!("atlas,0,{n},{e:e},1600,1e-3\n");
+    }
+    let atlas = Atlas::parse(&text, WINDOW).unwrap();
+    let release = Scene::Release { angle_deg: 0.0 };
+    assert_eq!(
+        atlas.model(&release, 3.0, 2e-2).unwrap().segments_for(2e-2),
+        28
+    );
+    assert!(atlas.model(&release, 3.0, 5e-3).is_none());
+}
