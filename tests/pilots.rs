@@ -407,13 +407,7 @@ fn from_45_degrees_to_t_5_the_graded_rods_longer_atlas_covers_the_run_and_the_la
         by_law.predicted_seconds < committed.predicted_seconds,
         "{committed:?}"
     );
-    let (choice, pilots) = pilot::choose(1e-3, &scene, 5.0, 60.0, u64::MAX).unwrap();
-    assert_eq!(choice.method, MethodKind::Graded, "{choice:?}");
-    assert_eq!(pilots.basis, pilot::Basis::Atlas);
-    assert!(
-        choice.segments <= atlas::SEGMENTS[atlas::SEGMENTS.len() - 1],
-        "{choice:?}"
-    );
+    graded_rods_from_their_atlas(1e-3, &scene, 5.0);
     // To t = 3 the shorter atlas serves: its window is the shortest that covers the run.
     let shorter = atlas::Atlas::of(MethodKind::Graded, 3.0).unwrap();
     assert_eq!(shorter.window, atlas::WINDOW);
@@ -453,10 +447,15 @@ fn from_30_degrees_at_1e_4_the_graded_rods_are_chosen_from_their_atlas_for_a_fra
 #[test]
 fn from_37_degrees_at_1e_4_the_graded_atlas_reaches_far_enough_to_choose_the_graded_rods() {
     let between = Scene::Release { angle_deg: 37.0 };
-    let (choice, pilots) = pilot::choose(1e-4, &between, 3.0, 60.0, u64::MAX).unwrap();
+    graded_rods_from_their_atlas(1e-4, &between, 3.0);
+}
+
+/// What `--tolerance eps` chooses for `scene` to `duration`, asserted to be the graded rods,
+/// from their atlas, within the N it measured.
+fn graded_rods_from_their_atlas(eps: f64, scene: &Scene, duration: f64) {
+    let (choice, pilots) = pilot::choose(eps, scene, duration, 60.0, u64::MAX).unwrap();
     assert_eq!(choice.method, MethodKind::Graded, "{choice:?}");
     assert_eq!(pilots.basis, pilot::Basis::Atlas);
-    // Within the N the atlas measured.
     assert!(
         choice.segments <= atlas::SEGMENTS[atlas::SEGMENTS.len() - 1],
         "{choice:?}"
