@@ -90,26 +90,29 @@ fn main() -> anyhow::Result<()> {
     // Past t = 3 the atlas serves tolerances of 1e-3 and so (its entries near 1e-4 need a
     // reference within 1e-5), refined once at most: the further doubling weighs what the
     // atlas to t = 3 needs, so it is for that atlas alone.
-    let (refined_to, twice_refined) = match window > WINDOW {
-        false => (REFINED_TO, TWICE_REFINED),
-        true => (LONGER_REFINED_TO, 0),
+    let longer = window > WINDOW;
+    let refined_to = if longer {
+        LONGER_REFINED_TO
+    } else {
+        REFINED_TO
     };
     let set = |a: f64| match HELD_OUT_ANGLES.contains(&a) {
         true => "held-out",
         false => "atlas",
     };
-    // The angles given, in their order (the first measured first), else every angle.
-    let every = ATLAS_ANGLES.iter().chain(&HELD_OUT_ANGLES).copied();
-    let angles: Vec<(&str, f64)> = match &only {
-        Some(only) => only.iter().copied().map(|a| (set(a), a)).collect(),
-        None => every.map(|a| (set(a), a)).collect(),
-    };
-    if let Some(&(_, a)) = angles
+    // The angles given, in their order (the first measured first), else every angle from
+    // `from` up.
+    let every: Vec<f64> = ATLAS_ANGLES
         .iter()
-        .find(|&&(_, a)| a < from || !ATLAS_ANGLES.iter().chain(&HELD_OUT_ANGLES).any(|&m| m == a))
-    {
+        .chain(&HELD_OUT_ANGLES)
+        .copied()
+        .filter(|&a| a >= from)
+        .collect();
+    let angles: Vec<f64> = only.unwrap_or_else(|| every.clone());
+    if let Some(a) = angles.iter().find(|a| !every.contains(a)) {
         anyhow::bail!("{a}° is not an atlas or held-out angle from {from}° up");
     }
+    let angles: Vec<(&str, f64)> = angles.into_iter().map(|a| (set(a), a)).collect();
     // Each angle's rows are printed as soon as they are measured, so that a run stopped
     // early keeps the angles it finished.
     println!("set,angle_deg,segments,worst,reference_segments,reference_own_error");
@@ -140,7 +143,8 @@ fn main() -> anyhow::Result<()> {
             };
             let mut worst = row(&reference);
             if method == MethodKind::Graded
-                && reference.segments * 2 <= twice_refined
+                && !longer
+                && reference.segments * 2 <= TWICE_REFINED
                 && reference.own_error > ROUND_OFF
                 && keeps_out(set, angle_deg, &worst, reference.own_error)
             {
