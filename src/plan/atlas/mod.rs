@@ -11,19 +11,19 @@
 //! (`scripts/release-atlas.sh`, which writes `assets/release-atlas/atlas.csv`, read here at
 //! build time).
 //!
-//! At an angle the atlas measured (one of its own, or a held-out one), a tolerance may be met
-//! by an N it measured there: the fewest whose bound (the measured error plus its reference's
-//! own) holds it, with no margin, since nothing is interpolated. Otherwise, and wherever it asks fewer segments, for an angle
-//! between two of the atlas's the larger of their two errors at each N is taken, times a
-//! margin measured at the held-out angles 5°, 15°, …, 85°: the largest ratio of a held-out
-//! angle's error to that of its two neighbours (where its reference is too coarse to bound its
-//! error, what the error is at least: the measured error less the reference's own). Between
-//! the atlas's N, the error is taken as first order from the largest constant (error × N) at
-//! that N and above. The atlas serves only what it measured: the rods, a release, runs to
-//! t ≤ 3, N ≤ 566 (the graded rods' to 1131), and errors at least ten times its references'
-//! own; elsewhere the method's one law stands. The graded rods have a second atlas, to t = 5
-//! from 40° ([`LONGER_WINDOW`], [`LONGER_FROM`]), for runs from t = 3 to 5, where the one law,
-//! fitted to t ≤ 3, does not cover the run and the pilots' figure rules instead.
+//! At an angle the atlas measured (one of its own, or a held-out one), a tolerance may be met by an
+//! N it measured there: the fewest whose bound (the measured error plus its reference's own) holds
+//! it, with no margin, since nothing is interpolated. Otherwise, and wherever it asks fewer
+//! segments, for an angle between two of the atlas's the larger of their two errors at each N is
+//! taken, times a margin measured at the held-out angles 5°, 15°, …, 85°: the largest ratio of a
+//! held-out angle's error to that of its two neighbours (where its reference is too coarse to bound
+//! its error, what the error is at least: the measured error less the reference's own). Between the
+//! atlas's N, the error is taken as first order from the largest constant (error × N) at that N and
+//! above. The atlas serves only what it measured: the rods, a release, runs to t ≤ 3, N ≤ 566 (the
+//! graded rods' to 1131), and errors at least ten times its references' own; elsewhere the method's
+//! one law stands. The graded rods have a second atlas, to t = 5 from 40° ([`LONGER_WINDOW`],
+//! [`LONGER_FROM`]), for runs from t = 3 to 5, where the one law, fitted to t ≤ 3, does not cover
+//! the run and the pilots' figure rules instead.
 
 use crate::methods::MethodKind;
 use crate::methods::error_model::ErrorModel;
