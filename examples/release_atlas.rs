@@ -2,7 +2,7 @@
 //! step) from each release angle 0°, 10°, …, 90° at N = 16 … 1131, against the chain
 //! extrapolated from N = 800, 1600 and 3200; and the same at the held-out angles 5°, 15°, …,
 //! 85°, which measure how far an angle between two of the atlas's can stray from them.
-//! `scripts/release-atlas.sh` runs it (about 20 minutes on 2 cores) and writes
+//! `scripts/release-atlas.sh` runs it (about half an hour on 2 cores) and writes
 //! `assets/release-atlas/atlas.csv`, which `--tolerance` reads at build time
 //! (`rope::plan::atlas`).
 //!
@@ -16,6 +16,9 @@
 //! ([`LONGER_FROM`]), against references refined towards [`LONGER_REFINED_TO`], once at most;
 //! `scripts/release-atlas.sh graded --until 5` writes `assets/release-atlas/graded-atlas-t5.csv`.
 //!
+//! Each row runs to N = 1131, the chain's below 20° to 3200 where its reference could judge
+//! 1e-4 ([`reach`]); `--to N` sets another end (one of [`SEGMENTS`]).
+//!
 //! A reference whose own error is above [`REFINED_TO`] is made from N = 1600, 3200 and 6400
 //! instead. The graded rods' is doubled once more (to at most [`TWICE_REFINED`]) where it
 //! keeps the atlas from trusting an entry it needs: at an atlas angle, any entry (the choices
@@ -26,7 +29,8 @@ use rayon::prelude::*;
 use rope::methods::MethodKind;
 use rope::model::Scene;
 use rope::plan::atlas::{
-    ATLAS_ANGLES, Atlas, GRADED_FROM, HELD_OUT_ANGLES, LONGER_FROM, SEGMENTS, WINDOW, trusted,
+    ATLAS_ANGLES, Atlas, GRADED_FROM, HELD_OUT_ANGLES, LONGER_FROM, REFERENCE_MARGIN, SEGMENTS,
+    WINDOW, trusted,
 };
 use rope::study::tip_reference::TipReference;
 use rope::study::tolerance_check::measure;
@@ -51,6 +55,16 @@ const TWICE_REFINED: usize = 2 * REFINED_SEGMENTS;
 /// The own error a reference of a longer window ([`WINDOW`] < `--until`) is refined towards.
 const LONGER_REFINED_TO: f64 = 1e-5;
 
+/// The largest N measured unless `--to` or [`reach`] says otherwise.
+const MEASURED_TO: usize = 1131;
+
+/// The largest N the chain's rows are measured to below [`GRADED_FROM`], where no other rods
+/// may be chosen: from 10° the chain needs about 2000 rods for 1e-4.
+const CHAIN_ALONE_TO: usize = 3200;
+
+/// The tolerance the chain's rows below [`GRADED_FROM`] are measured on for.
+const CHAIN_ALONE_FOR: f64 = 1e-4;
+
 /// A reference's own error below this is round-off (the vertical release hangs still): no
 /// doubling can make the atlas trust errors of that size.
 const ROUND_OFF: f64 = 1e-12;
@@ -58,6 +72,7 @@ const ROUND_OFF: f64 = 1e-12;
 fn main() -> anyhow::Result<()> {
     let mut method = MethodKind::Chain;
     let mut window = WINDOW;
+    let mut to = None;
     // Only these angles, where given (to remeasure some rows).
     let mut only: Option<Vec<f64>> = None;
     let mut args = std::env::args().skip(1);
@@ -74,11 +89,22 @@ fn main() -> anyhow::Result<()> {
                         anyhow::anyhow!("--until takes a duration > 0 ({value:?} given)")
                     })?;
             }
+            "--to" => {
+                let value = args.next().unwrap_or_default();
+                to = value
+                    .parse()
+                    .ok()
+                    .filter(|n| SEGMENTS.contains(n))
+                    .map(Some)
+                    .ok_or_else(|| {
+                        anyhow::anyhow!("--to takes one of {SEGMENTS:?} ({value:?} given)")
+                    })?;
+            }
             list if only.is_none() && list.starts_with(|c: char| c.is_ascii_digit()) => {
                 only = Some(list.split(',').map(str::parse).collect::<Result<_, _>>()?);
             }
             other => anyhow::bail!(
-                "usage: release_atlas [graded] [--until T] [ANGLES] ({other:?} given)"
+                "usage: release_atlas [graded] [--until T] [--to N] [ANGLES] ({other:?} given)"
             ),
         }
     }
@@ -131,8 +157,10 @@ fn main() -> anyhow::Result<()> {
                 window,
             )?;
             let row = |reference: &TipReference| -> Vec<(usize, f64)> {
+                let to = to.unwrap_or_else(|| reach(method, angle_deg, reference.own_error));
                 SEGMENTS
                     .iter()
+                    .filter(|&&n| n <= to)
                     .map(|&n| {
                         let dt = method.tolerance_dt(n);
                         let worst = measure(method, &scene, n, dt, window, false, reference)
@@ -176,6 +204,17 @@ fn main() -> anyhow::Result<()> {
             Ok(())
         })?;
     Ok(())
+}
+
+/// The largest N measured from `angle_deg` against a reference whose own error is `own`: the
+/// chain's below [`GRADED_FROM`] on to [`CHAIN_ALONE_TO`] where the reference could judge
+/// [`CHAIN_ALONE_FOR`] (a tenth of it), else [`MEASURED_TO`].
+fn reach(method: MethodKind, angle_deg: f64, own: f64) -> usize {
+    let alone = method == MethodKind::Chain && angle_deg < GRADED_FROM;
+    match alone && own <= REFERENCE_MARGIN * CHAIN_ALONE_FOR {
+        true => CHAIN_ALONE_TO,
+        false => MEASURED_TO,
+    }
 }
 
 /// Whether a graded row measured against a reference of own error `own` leaves out an entry

@@ -113,3 +113,40 @@ fn the_committed_references_obey_the_physics_of_the_string() {
         }
     }
 }
+
+/// Where no run of the grid holds the smallest EPS the reference judges, the grid goes on past
+/// its largest N, every method at each N, and stops at the first N where one holds: mode 2
+/// errs by about 0.5/N² on the chain's rods, within 1e-4 from N = 100 but not at 50.
+#[test]
+fn a_grid_that_holds_nothing_goes_on_past_its_largest_n_until_a_run_holds() {
+    use rope::plan::tolerance::startable;
+    use rope::study::tolerance_check::grid_steps;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    let scene = Scene::Mode {
+        number: 2,
+        amplitude: 0.05,
+    };
+    let spec = CheckSpec {
+        scenes: vec![scene],
+        tolerances: vec![1e-4],
+        grid: vec![16],
+        grid_beyond: vec![25, 50, 100, 141, 200],
+        ..CheckSpec::quick()
+    };
+    let ticks = AtomicUsize::new(0);
+    let checked = check(&spec, || {
+        ticks.fetch_add(1, Ordering::Relaxed);
+    })
+    .unwrap();
+    let cheapest = checked.cells[0]
+        .cheapest
+        .expect("a run past the grid holds 1e-4");
+    assert_eq!(cheapest.segments, 100, "{cheapest:?}");
+    assert!(cheapest.worst <= 1e-4);
+    // The reference, every startable method at each N up to 100 (none past it), the choice.
+    let runs: usize = [16, 25, 50, 100]
+        .iter()
+        .flat_map(|&n| startable(&scene).map(move |m| grid_steps(m, n).len()))
+        .sum();
+    assert_eq!(ticks.load(Ordering::Relaxed), 1 + runs + 1);
+}

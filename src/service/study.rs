@@ -277,6 +277,7 @@ fn tolerance_check(
     let grid_runs: usize = spec
         .grid
         .iter()
+        .chain(&spec.grid_beyond)
         .flat_map(|&n| MethodKind::ALL.map(|m| grid_steps(m, n).len()))
         .sum();
     let runs = spec.scenes.len() * (1 + grid_runs + spec.tolerances.len());

@@ -44,6 +44,10 @@ pub struct CheckSpec {
     pub reference_segments_reach: usize,
     /// The grid's segment counts (every startable method at each, at [`grid_steps`]).
     pub grid: Vec<usize>,
+    /// Where none of the grid's runs holds the smallest EPS the scene's reference can judge,
+    /// the grid goes on at these N, every startable method at each, up to the first N where
+    /// a run holds it: a choice past the grid's largest N is then set beside runs as fine.
+    pub grid_beyond: Vec<usize>,
 }
 
 impl Default for CheckSpec {
@@ -54,7 +58,8 @@ impl Default for CheckSpec {
     /// 2N with N from 200 up to 3200 (a whip's reference reaches an own error of 1e-5, what
     /// judges 1e-4, near N = 1600 from 20° to 40°: 6400 rods, up to four minutes a scene),
     /// and to 6400 where that can reach it (from 80° and 52°: runs up to 12 800 rods, about
-    /// 20 minutes each), beside a grid up to N = 1131 (the graded rods' atlas's largest N).
+    /// 20 minutes each), beside a grid up to N = 1131 (the graded rods' atlas's largest N), on
+    /// to 3200 where nothing in it holds (the chain's atlas's largest N, from 10°).
     fn default() -> Self {
         let release = |angle_deg| Scene::Release { angle_deg };
         let mode = |number| Scene::Mode {
@@ -72,6 +77,7 @@ impl Default for CheckSpec {
             reference_segments_max: 3200,
             reference_segments_reach: 6400,
             grid: vec![16, 25, 32, 50, 64, 100, 141, 200, 283, 400, 566, 800, 1131],
+            grid_beyond: vec![1600, 2263, 3200],
         }
     }
 }
@@ -94,6 +100,7 @@ impl CheckSpec {
             reference_segments_max: 200,
             reference_segments_reach: 200,
             grid: vec![16, 25, 32, 50, 64, 100],
+            grid_beyond: Vec::new(),
         }
     }
 }
@@ -261,6 +268,32 @@ pub fn check(spec: &CheckSpec, tick: impl Fn() + Sync) -> anyhow::Result<Checked
                 }
             }
         }
+        // The smallest EPS the reference can judge; where no run holds it, on past the grid.
+        let judged = spec
+            .tolerances
+            .iter()
+            .copied()
+            .filter(|&eps| reference.own_error <= REFERENCE_MARGIN * eps)
+            .fold(f64::INFINITY, f64::min);
+        for &n in &spec.grid_beyond {
+            if grid.iter().any(|r| r.worst <= judged) {
+                break;
+            }
+            for method in tolerance::startable(scene) {
+                for dt in grid_steps(method, n) {
+                    grid.extend(measure(
+                        method,
+                        scene,
+                        n,
+                        dt,
+                        spec.duration,
+                        false,
+                        reference,
+                    ));
+                    tick();
+                }
+            }
+        }
         for &eps in &spec.tolerances {
             let mut cell = Cell {
                 scene: *scene,
@@ -313,7 +346,9 @@ pub fn markdown(spec: &CheckSpec, checked: &Checked, command: &str) -> String {
          reference's own error is at most {REFERENCE_MARGIN} × the smallest EPS. Its \
          CPU (one thread, pilots included) is set beside the cheapest run of the grid (every \
          method that can start, at N = {:?}, each at its default step and at its tolerance step \
-         where that is another, without a shadow) whose largest error also holds EPS. A \
+         where that is another, without a shadow; where none holds the smallest EPS the \
+         reference can judge, on at N = {:?} up to the first N where one does) whose largest \
+         error also holds EPS. A \
          tolerance is checked only where the reference's own error at the frames is at most \
          {REFERENCE_MARGIN} × EPS.\n\n## References\n\n\
          Each reference's own error is measured: how far its tip moves when it is extrapolated \
@@ -327,7 +362,8 @@ pub fn markdown(spec: &CheckSpec, checked: &Checked, command: &str) -> String {
         spec.reference_segments,
         spec.reference_segments_max,
         spec.reference_segments_reach,
-        spec.grid
+        spec.grid,
+        spec.grid_beyond
     );
     for r in &checked.references {
         text += &format!(

@@ -13,17 +13,18 @@
 //!
 //! At an angle the atlas measured (one of its own, or a held-out one), a tolerance may be met by an
 //! N it measured there: the fewest whose bound (the measured error plus its reference's own) holds
-//! it, with no margin, since nothing is interpolated. Otherwise, and wherever it asks fewer
-//! segments, for an angle between two of the atlas's the larger of their two errors at each N is
-//! taken, times a margin measured at the held-out angles 5°, 15°, …, 85°: the largest ratio of a
-//! held-out angle's error to that of its two neighbours (where its reference is too coarse to bound
-//! its error, what the error is at least: the measured error less the reference's own). Between the
-//! atlas's N, the error is taken as first order from the largest constant (error × N) at that N and
-//! above. The atlas serves only what it measured: the rods, a release, runs to t ≤ 3, N ≤ 566 (the
-//! graded rods' to 1131), and errors at least ten times its references' own; elsewhere the method's
-//! one law stands. The graded rods have a second atlas, to t = 5 from 40° ([`LONGER_WINDOW`],
-//! [`LONGER_FROM`]), for runs from t = 3 to 5, where the one law, fitted to t ≤ 3, does not cover
-//! the run and the pilots' figure rules instead.
+//! it, against a reference that could judge it (its own error at most a tenth of the tolerance, as
+//! the tolerance check asks), with no margin, since nothing is interpolated. Otherwise, and
+//! wherever it asks fewer segments, for an angle between two of the atlas's the larger of their two
+//! errors at each N is taken, times a margin measured at the held-out angles 5°, 15°, …, 85°: the
+//! largest ratio of a held-out angle's error to that of its two neighbours (where its reference is
+//! too coarse to bound its error, what the error is at least: the measured error less the
+//! reference's own). Between the atlas's N, the error is taken as first order from the largest
+//! constant (error × N) at that N and above, from errors at least ten times their references' own.
+//! The atlas serves only what it measured: the rods, a release, runs to t ≤ 3, N ≤ 566 (from
+//! 10° 3200, the graded rods' 1131); elsewhere the method's one law stands. The graded rods have a
+//! second atlas, to t = 5 from 40° ([`LONGER_WINDOW`], [`LONGER_FROM`]), for runs from t = 3 to 5,
+//! where the one law, fitted to t ≤ 3, does not cover the run and the pilots' figure rules instead.
 
 use crate::methods::MethodKind;
 use crate::methods::error_model::ErrorModel;
@@ -36,9 +37,12 @@ pub const ATLAS_ANGLES: [f64; 10] = [0.0, 10.0, 20.0, 30.0, 40.0, 50.0, 60.0, 70
 /// The angles measured only to find the margin for angles between the atlas's.
 pub const HELD_OUT_ANGLES: [f64; 9] = [5.0, 15.0, 25.0, 35.0, 45.0, 55.0, 65.0, 75.0, 85.0];
 
-/// The segment counts measured at each angle (√2 apart from 50 up). The chain's atlas was
-/// measured to 566, the graded rods' to 1131.
-pub const SEGMENTS: [usize; 13] = [16, 25, 32, 50, 64, 100, 141, 200, 283, 400, 566, 800, 1131];
+/// The segment counts an angle may be measured at (√2 apart from 50 up). The chain's atlas was
+/// measured to 566 (from 10° to 3200: the chain needs about 2000 rods for 1e-4 there, and no
+/// other rods may be chosen), the graded rods' to 1131.
+pub const SEGMENTS: [usize; 16] = [
+    16, 25, 32, 50, 64, 100, 141, 200, 283, 400, 566, 800, 1131, 1600, 2263, 3200,
+];
 
 /// The graded rods' atlas starts at this release angle, where `--tolerance` may choose
 /// them ([`crate::methods::graded::SPIN_FREE_FROM`]).
@@ -88,6 +92,9 @@ struct Row {
     /// its reference's own), trusted or not: an entry too coarse to bound the error still
     /// shows how far a held-out angle strays at least.
     floor: [Option<f64>; SEGMENTS.len()],
+    /// Each finite measured worst error at [`SEGMENTS`] with its reference's own error, trusted
+    /// or not: at the angle itself an entry serves any tolerance its reference could judge.
+    measured: [Option<(f64, f64)>; SEGMENTS.len()],
 }
 
 /// The atlas and held-out rows, and the margin the held-out rows measure.
@@ -196,11 +203,13 @@ impl Atlas {
                     angle_deg,
                     bound: [None; SEGMENTS.len()],
                     floor: [None; SEGMENTS.len()],
+                    measured: [None; SEGMENTS.len()],
                 });
             }
             if let Some(row) = table.last_mut() {
                 row.bound[j] = trusted(worst, own).then_some(worst + own);
                 row.floor[j] = (worst.is_finite() && worst > own).then_some(worst - own);
+                row.measured[j] = (worst.is_finite() && own.is_finite()).then_some((worst, own));
             }
         }
         for row in &mut rows {
@@ -289,22 +298,25 @@ impl Atlas {
             .min_by_key(|model| model.segments_for(tolerance))
     }
 
-    /// At an angle of the atlas's own or held-out rows, the fewest of [`SEGMENTS`], trusted
-    /// from N = 16 up, whose bound (the measured worst error plus its reference's own) is
-    /// within `tolerance`, as a law that asks exactly that N for `tolerance` (its bound there
-    /// is just under `tolerance`, and at least what was measured); `None` at another angle, or
-    /// where no trusted N holds it.
+    /// At an angle of the atlas's own or held-out rows, the fewest of [`SEGMENTS`] whose bound
+    /// (the measured worst error plus its reference's own) is within `tolerance`, measured
+    /// against a reference that could judge `tolerance` (its own error at most
+    /// [`REFERENCE_MARGIN`] × `tolerance`, the tolerance check's rule), as a law that asks
+    /// exactly that N for `tolerance` (its bound there is just under `tolerance`, and at least
+    /// what was measured); `None` at another angle, or where no such N holds it. An entry need
+    /// not be trusted for the margin (its error ten times its reference's own): a bound is a
+    /// bound, and nothing is interpolated from it.
     fn measured(&self, angle_deg: f64, tolerance: f64) -> Option<ErrorModel> {
         let row = self
             .rows
             .iter()
             .chain(&self.held_out)
             .find(|r| r.angle_deg == angle_deg)?;
-        let j = row
-            .bound
-            .iter()
-            .map_while(|b| *b)
-            .position(|bound| bound <= tolerance)?;
+        let j = row.measured.iter().position(|entry| {
+            entry.is_some_and(|(worst, own)| {
+                own <= REFERENCE_MARGIN * tolerance && worst + own <= tolerance
+            })
+        })?;
         Some(ErrorModel {
             constant: tolerance * (SEGMENTS[j] as f64 - 0.5),
             order: 1.0,

@@ -270,3 +270,28 @@ fn an_entry_whose_reference_is_too_coarse_ends_the_row() {
     );
     assert!(atlas.model(&release, 3.0, 5e-3).is_none());
 }
+
+#[test]
+fn an_angles_own_entry_serves_a_tolerance_its_reference_can_judge_though_the_margin_would_not_trust_it()
+ {
+    // 10° errs by 0.1/N against a reference whose own error is 9e-6: from N = 1131 (8.8e-5)
+    // the entries are below ten times it, so the interpolated law stops at 800, where 1e-4
+    // is out of reach. Its own row still bounds the error at 1131 by 9.7e-5, and the
+    // reference could judge 1e-4 (9e-6 ≤ 1e-5).
+    let mut text = csv(&[("atlas", 0.0, law(0.1))]);
+    for (n, e) in SEGMENTS.iter().zip(law(0.1)) {
+        text += &format!("atlas,10,{n},{e:e},1600,9e-6\n");
+    }
+    let atlas = Atlas::parse(&text, WINDOW).unwrap();
+    let at = |angle_deg, eps| {
+        let model = atlas.model(&Scene::Release { angle_deg }, 3.0, eps)?;
+        Some(model.segments_for(eps))
+    };
+    assert_eq!(at(10.0, 1e-4), Some(1131));
+    // Between 0° and 10° the law is from trusted entries only: to N = 800, 1.25e-4.
+    assert_eq!(at(5.0, 1e-4), None);
+    // A reference that could not judge 1e-4 (own error 1.1e-5) serves it nowhere.
+    let coarse = Atlas::parse(&text.replace(",9e-6", ",1.1e-5"), WINDOW).unwrap();
+    let model = coarse.model(&Scene::Release { angle_deg: 10.0 }, 3.0, 1e-4);
+    assert!(model.is_none(), "{model:?}");
+}
