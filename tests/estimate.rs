@@ -28,7 +28,7 @@ fn cells(scene: Scene, segments: usize) -> Vec<Cell> {
     let reference = Trajectory::compute(&scene, REFERENCE_SEGMENTS, DURATION).unwrap();
     // The methods the rule may choose from the scene (the graded rods from a release at 20° and
     // above).
-    tolerance::startable(&scene)
+    tolerance::startable(&scene, DURATION)
         .map(|m| estimate_check::run_cell(m, scene, segments, DURATION, &reference))
         .collect()
 }

@@ -476,6 +476,27 @@ fn from_10_degrees_at_1e_4_the_chain_takes_its_own_row_past_n_1131() {
     assert_eq!(choice.segments, 2263, "{choice:?}");
 }
 
+/// The graded rods may be chosen from 20° to t = 3, but past t = 3 only from 40°: below it
+/// their end rods come out of a second whip, near t = 4.8, spinning (a step to t = 5 from 30°
+/// costs 13 times its price to t = 3), which the cost model does not see. From 30° to t = 5 the
+/// pilots then fly the chain, not the graded rods.
+#[test]
+fn past_t_3_the_graded_rods_are_chosen_only_from_40_degrees() {
+    use rope::methods::graded::{SPIN_FREE_FROM, SPIN_FREE_LONGER_FROM};
+    let graded = |angle_deg: f64, duration: f64| {
+        let scene = Scene::Release { angle_deg };
+        tolerance::startable(&scene, duration).any(|m| m == MethodKind::Graded)
+    };
+    assert!(graded(SPIN_FREE_FROM, 3.0) && graded(30.0, 3.0));
+    assert!(!graded(30.0, 5.0) && !graded(39.0, 3.5));
+    assert!(graded(SPIN_FREE_LONGER_FROM, 5.0) && graded(60.0, 5.0));
+    assert!(!graded(10.0, 3.0) && !graded(10.0, 5.0));
+    let thirty = Scene::Release { angle_deg: 30.0 };
+    let (_, pilots) = pilot::choose(1e-2, &thirty, 5.0, 60.0, u64::MAX).unwrap();
+    assert!(pilots.flown.iter().all(|p| p.method != MethodKind::Graded));
+    assert!(pilots.flown.iter().any(|p| p.method == MethodKind::Chain));
+}
+
 /// What `--tolerance eps` chooses for `scene` to `duration`, asserted to be the graded rods,
 /// from their atlas, within the N it measured.
 fn graded_rods_from_their_atlas(eps: f64, scene: &Scene, duration: f64) {

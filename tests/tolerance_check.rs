@@ -146,7 +146,7 @@ fn a_grid_that_holds_nothing_goes_on_past_its_largest_n_until_a_run_holds() {
     // The reference, every startable method at each N up to 100 (none past it), the choice.
     let runs: usize = [16, 25, 50, 100]
         .iter()
-        .flat_map(|&n| startable(&scene).map(move |m| grid_steps(m, n).len()))
+        .flat_map(|&n| startable(&scene, 3.0).map(move |m| grid_steps(m, n).len()))
         .sum();
     assert_eq!(ticks.load(Ordering::Relaxed), 1 + runs + 1);
 }

@@ -65,7 +65,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     },
     colours: ([110, 170, 240], [10, 40, 140]),
     build: |scene, segments, dt| Ok(Box::new(Chain::new(scene, segments, dt)?)),
-    plannable: |_| true,
+    plannable: |_, _| true,
 };
 
 /// Where a solve puts the rods: at angles φ (which become the base of the step's later

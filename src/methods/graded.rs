@@ -24,6 +24,17 @@ pub const GRADING: f64 = 1.5;
 /// `--tolerance` chooses the graded rods from here up only.
 pub const SPIN_FREE_FROM: f64 = 20.0;
 
+/// Past [`SPIN_FREE_UNTIL`] the end rods come out of a second whip, near t = 4.8, spinning
+/// from below this angle: at the tolerance step a step to t = 5 cost 3 854 ns per segment from
+/// 30° at N = 800 (289 to t = 3), 1 290 from 35° at N = 200 (345), at most 544 from 40° to 70°
+/// (`docs/measurements.md`). `--tolerance` chooses the graded rods for a longer run from here
+/// up only.
+pub const SPIN_FREE_LONGER_FROM: f64 = 40.0;
+
+/// The time up to which the graded rods' end rods come out of the whip without spinning from
+/// [`SPIN_FREE_FROM`] up.
+pub const SPIN_FREE_UNTIL: f64 = 3.0;
+
 /// What the graded rods say of themselves (see [`Descriptor`]): the chain's, but for what
 /// the grading changes.
 pub const DESCRIPTOR: Descriptor = Descriptor {
@@ -54,6 +65,12 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             GRADING,
         )?))
     },
-    plannable: |scene| matches!(scene, Scene::Release { angle_deg } if *angle_deg >= SPIN_FREE_FROM),
+    plannable: |scene, duration| {
+        let from = match duration <= SPIN_FREE_UNTIL {
+            true => SPIN_FREE_FROM,
+            false => SPIN_FREE_LONGER_FROM,
+        };
+        matches!(scene, Scene::Release { angle_deg } if *angle_deg >= from)
+    },
     ..chain::DESCRIPTOR
 };

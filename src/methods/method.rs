@@ -285,10 +285,11 @@ pub struct Descriptor {
     pub colours: ([u8; 3], [u8; 3]),
     /// Builds the method at rest in a scene, validating what it needs.
     pub build: Builder,
-    /// Whether `--tolerance` may choose the method for a scene it can start from: where its
-    /// cost is what [`Descriptor::ns_per_segment_step`] predicts (every scene but for the
-    /// graded rods, whose end rods spin on near the horizontal).
-    pub plannable: fn(&Scene) -> bool,
+    /// Whether `--tolerance` may choose the method for a scene it can start from, for a run
+    /// to the given duration: where its cost is what [`Descriptor::ns_per_segment_step`]
+    /// predicts (every scene but for the graded rods, whose end rods spin on near the
+    /// horizontal, and, past t = 3, below 40°).
+    pub plannable: fn(&Scene, f64) -> bool,
 }
 
 /// When a method blew up at one N, over the steps of the blow-up map.

@@ -108,7 +108,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     },
     colours: ([200, 170, 240], [90, 40, 160]),
     build: |scene, segments, dt| Ok(Box::new(Midpoint::new(scene, segments, dt)?)),
-    plannable: |_| true,
+    plannable: |_, _| true,
 };
 
 /// sin x, cos x, sinc x = sin x / x and its derivative, by series where |x| is small (their

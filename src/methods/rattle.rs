@@ -93,7 +93,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     },
     colours: ([140, 220, 140], [10, 110, 40]),
     build: |scene, segments, dt| Ok(Box::new(Rattle::new(scene, segments, dt)?)),
-    plannable: |_| true,
+    plannable: |_, _| true,
 };
 
 /// A configuration and its momenta.

@@ -70,7 +70,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     },
     colours: ([250, 170, 60], [150, 30, 0]),
     build: |scene, segments, dt| Ok(Box::new(Seed::new(scene, segments, dt)?)),
-    plannable: |_| true,
+    plannable: |_, _| true,
 };
 
 /// Which sign the support condition (11) is used with.

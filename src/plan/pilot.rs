@@ -214,7 +214,9 @@ fn climb(
     seconds: impl Fn(&Choice) -> f64,
     fits: impl Fn(MethodKind, usize, f64) -> bool + Copy,
 ) -> (Vec<Pilot>, Option<Best>) {
-    let mut pilots: Vec<Pilot> = tolerance::startable(scene).map(Pilot::new).collect();
+    let mut pilots: Vec<Pilot> = tolerance::startable(scene, duration)
+        .map(Pilot::new)
+        .collect();
     pilots.sort_by(|a, b| {
         let cost = |p: &Pilot| level_seconds(p.method, LEVELS[0], duration);
         cost(a).total_cmp(&cost(b))

@@ -148,7 +148,7 @@ pub fn choose_with(
     fewest: usize,
     fits: impl Fn(MethodKind, usize, f64) -> bool,
 ) -> Option<Choice> {
-    startable(scene)
+    startable(scene, duration)
         .filter_map(|method| {
             Some(by_model(
                 method,
@@ -169,7 +169,7 @@ pub fn tightest(
     scene: &Scene,
     fits: impl Fn(MethodKind, usize, f64) -> bool,
 ) -> Option<Choice> {
-    startable(scene)
+    startable(scene, duration)
         .filter_map(|method| {
             let fits_at = |n: usize| fits(method, n, method.tolerance_dt(n));
             if !fits_at(MIN_SEGMENTS) {
@@ -194,12 +194,12 @@ pub fn tightest(
         .min_by(|a, b| a.predicted_error.total_cmp(&b.predicted_error))
 }
 
-/// The methods that can start from `scene` and that the rule may choose there
-/// ([`Descriptor::plannable`](crate::methods::Descriptor::plannable)).
-pub fn startable(scene: &Scene) -> impl Iterator<Item = MethodKind> + '_ {
-    MethodKind::ALL
-        .into_iter()
-        .filter(move |&method| (method.descriptor().plannable)(scene) && can_start(method, scene))
+/// The methods that can start from `scene` and that the rule may choose there for a run to
+/// `duration` ([`Descriptor::plannable`](crate::methods::Descriptor::plannable)).
+pub fn startable(scene: &Scene, duration: f64) -> impl Iterator<Item = MethodKind> + '_ {
+    MethodKind::ALL.into_iter().filter(move |&method| {
+        (method.descriptor().plannable)(scene, duration) && can_start(method, scene)
+    })
 }
 
 /// Whether `method` can start from `scene` (independent of N: asked at its fewest segments,

@@ -201,11 +201,11 @@ pub fn measure(
     })
 }
 
-/// The method the check's reference of `scene` is made of: the graded rods where the rule may
-/// choose them (a release from 20° up: their tip converges faster through the whip, and
-/// their end rods do not spin on), else [`MethodKind::REFERENCE`].
-pub fn reference_method(scene: &Scene) -> MethodKind {
-    match (MethodKind::Graded.descriptor().plannable)(scene) {
+/// The method the check's reference of `scene` to `duration` is made of: the graded rods
+/// where the rule may choose them (a release from 20° up: their tip converges faster through
+/// the whip, and their end rods do not spin on), else [`MethodKind::REFERENCE`].
+pub fn reference_method(scene: &Scene, duration: f64) -> MethodKind {
+    match (MethodKind::Graded.descriptor().plannable)(scene, duration) {
         true => MethodKind::Graded,
         false => MethodKind::REFERENCE,
     }
@@ -237,7 +237,7 @@ pub fn check(spec: &CheckSpec, tick: impl Fn() + Sync) -> anyhow::Result<Checked
         .map(|scene| {
             let target = REFERENCE_MARGIN * smallest;
             let reference = TipReference::refined_by(
-                reference_method(scene),
+                reference_method(scene, spec.duration),
                 scene,
                 spec.reference_segments,
                 spec.reference_segments_max,
@@ -254,7 +254,7 @@ pub fn check(spec: &CheckSpec, tick: impl Fn() + Sync) -> anyhow::Result<Checked
         // Each method up the grid until it holds the smallest EPS: a finer run could only
         // cost more.
         let mut grid: Vec<Measured> = Vec::new();
-        for method in tolerance::startable(scene) {
+        for method in tolerance::startable(scene, spec.duration) {
             for &n in &spec.grid {
                 let mut held = false;
                 for dt in grid_steps(method, n) {
@@ -279,7 +279,7 @@ pub fn check(spec: &CheckSpec, tick: impl Fn() + Sync) -> anyhow::Result<Checked
             if grid.iter().any(|r| r.worst <= judged) {
                 break;
             }
-            for method in tolerance::startable(scene) {
+            for method in tolerance::startable(scene, spec.duration) {
                 for dt in grid_steps(method, n) {
                     grid.extend(measure(
                         method,

@@ -55,12 +55,10 @@ pub const WINDOW: f64 = 3.0;
 /// whose whips after t = 3 the shorter atlas never saw.
 pub const LONGER_WINDOW: f64 = 5.0;
 
-/// The graded rods' longer atlas starts at this release angle. Below it their end rods come
-/// out of a second whip, near t = 4.8, spinning: at their tolerance step a step to t = 5 costs
-/// 3 854 ns per segment from 30° at N = 800 (289 to t = 3), 1 290 from 35° at N = 200 (345);
-/// from 40° to 70° at most 544 (`docs/measurements.md`). The cost model, measured to t = 3,
-/// would not see it.
-pub const LONGER_FROM: f64 = 40.0;
+/// The graded rods' longer atlas starts at this release angle, from which `--tolerance` may
+/// choose them past t = 3 ([`crate::methods::graded::SPIN_FREE_LONGER_FROM`]: below it their
+/// end rods come out of a second whip, near t = 4.8, spinning).
+pub const LONGER_FROM: f64 = crate::methods::graded::SPIN_FREE_LONGER_FROM;
 
 /// An entry is trusted only where its reference's own error is at most this fraction of it.
 pub const REFERENCE_MARGIN: f64 = 0.1;
