@@ -272,8 +272,7 @@ fn an_entry_whose_reference_is_too_coarse_ends_the_row() {
 }
 
 #[test]
-fn an_angles_own_entry_serves_a_tolerance_its_reference_can_judge_though_the_margin_would_not_trust_it()
- {
+fn an_angles_own_entry_serves_what_its_reference_can_judge_though_the_law_would_not_use_it() {
     // 10° errs by 0.1/N against a reference whose own error is 9e-6: from N = 1131 (8.8e-5)
     // the entries are below ten times it, so the interpolated law stops at 800, where 1e-4
     // is out of reach. Its own row still bounds the error at 1131 by 9.7e-5, and the
