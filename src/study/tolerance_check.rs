@@ -251,18 +251,25 @@ pub fn check(spec: &CheckSpec, tick: impl Fn() + Sync) -> anyhow::Result<Checked
         .collect::<anyhow::Result<Vec<_>>>()?;
     for reference in &references {
         let scene = &reference.scene;
+        // `method`'s runs at N = `n`, one at each of its grid steps (those that finished).
+        let runs_at = |method: MethodKind, n: usize| -> Vec<Measured> {
+            grid_steps(method, n)
+                .into_iter()
+                .filter_map(|dt| {
+                    let run = measure(method, scene, n, dt, spec.duration, false, reference);
+                    tick();
+                    run
+                })
+                .collect()
+        };
         // Each method up the grid until it holds the smallest EPS: a finer run could only
         // cost more.
         let mut grid: Vec<Measured> = Vec::new();
         for method in tolerance::startable(scene, spec.duration) {
             for &n in &spec.grid {
-                let mut held = false;
-                for dt in grid_steps(method, n) {
-                    let run = measure(method, scene, n, dt, spec.duration, false, reference);
-                    tick();
-                    grid.extend(run);
-                    held |= run.is_some_and(|r| r.worst <= smallest);
-                }
+                let runs = runs_at(method, n);
+                let held = runs.iter().any(|r| r.worst <= smallest);
+                grid.extend(runs);
                 if held {
                     break;
                 }
@@ -280,18 +287,7 @@ pub fn check(spec: &CheckSpec, tick: impl Fn() + Sync) -> anyhow::Result<Checked
                 break;
             }
             for method in tolerance::startable(scene, spec.duration) {
-                for dt in grid_steps(method, n) {
-                    grid.extend(measure(
-                        method,
-                        scene,
-                        n,
-                        dt,
-                        spec.duration,
-                        false,
-                        reference,
-                    ));
-                    tick();
-                }
+                grid.extend(runs_at(method, n));
             }
         }
         for &eps in &spec.tolerances {
