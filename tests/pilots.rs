@@ -458,8 +458,7 @@ fn from_37_degrees_at_1e_4_the_graded_atlas_reaches_far_enough_to_choose_the_gra
 #[test]
 fn from_80_degrees_at_1e_4_the_graded_rods_own_row_serves_what_its_reference_can_judge() {
     let eighty = Scene::Release { angle_deg: 80.0 };
-    graded_rods_from_their_atlas(1e-4, &eighty, 3.0);
-    let (choice, _) = pilot::choose(1e-4, &eighty, 3.0, 60.0, u64::MAX).unwrap();
+    let choice = graded_rods_from_their_atlas(1e-4, &eighty, 3.0);
     assert_eq!(choice.segments, 1131, "{choice:?}");
 }
 
@@ -499,7 +498,7 @@ fn past_t_3_the_graded_rods_are_chosen_only_from_40_degrees() {
 
 /// What `--tolerance eps` chooses for `scene` to `duration`, asserted to be the graded rods,
 /// from their atlas, within the N it measured.
-fn graded_rods_from_their_atlas(eps: f64, scene: &Scene, duration: f64) {
+fn graded_rods_from_their_atlas(eps: f64, scene: &Scene, duration: f64) -> tolerance::Choice {
     let (choice, pilots) = pilot::choose(eps, scene, duration, 60.0, u64::MAX).unwrap();
     assert_eq!(choice.method, MethodKind::Graded, "{choice:?}");
     assert_eq!(pilots.basis, pilot::Basis::Atlas);
@@ -508,6 +507,7 @@ fn graded_rods_from_their_atlas(eps: f64, scene: &Scene, duration: f64) {
         .rows()
         .flat_map(|(_, row)| row.into_iter().map(|(n, _)| n));
     assert!(choice.segments <= largest.max().unwrap(), "{choice:?}");
+    choice
 }
 
 /// The release from `angle_deg` to `duration` of the graded rods at N = 800, 1600, 3200,

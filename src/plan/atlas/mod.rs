@@ -86,13 +86,20 @@ struct Row {
     /// A bound on the worst tip error at each of [`SEGMENTS`] (the measured error plus its
     /// reference's own), trusted from N = 16 up to the first that is not; `None` from there.
     bound: [Option<f64>; SEGMENTS.len()],
-    /// What the worst tip error at each of [`SEGMENTS`] is at least (the measured error less
-    /// its reference's own), trusted or not: an entry too coarse to bound the error still
-    /// shows how far a held-out angle strays at least.
-    floor: [Option<f64>; SEGMENTS.len()],
     /// Each finite measured worst error at [`SEGMENTS`] with its reference's own error, trusted
-    /// or not: at the angle itself an entry serves any tolerance its reference could judge.
+    /// or not: at the angle itself an entry serves any tolerance its reference could judge,
+    /// and it says what the error is at least ([`Row::floor`]).
     measured: [Option<(f64, f64)>; SEGMENTS.len()],
+}
+
+impl Row {
+    /// What the worst tip error at the `j`-th of [`SEGMENTS`] is at least (the measured error
+    /// less its reference's own), trusted or not: an entry too coarse to bound the error still
+    /// shows how far a held-out angle strays at least.
+    fn floor(&self, j: usize) -> Option<f64> {
+        let (worst, own) = self.measured[j]?;
+        (worst > own).then_some(worst - own)
+    }
 }
 
 /// The atlas and held-out rows, and the margin the held-out rows measure.
@@ -200,13 +207,11 @@ impl Atlas {
                 table.push(Row {
                     angle_deg,
                     bound: [None; SEGMENTS.len()],
-                    floor: [None; SEGMENTS.len()],
                     measured: [None; SEGMENTS.len()],
                 });
             }
             if let Some(row) = table.last_mut() {
                 row.bound[j] = trusted(worst, own).then_some(worst + own);
-                row.floor[j] = (worst.is_finite() && worst > own).then_some(worst - own);
                 row.measured[j] = (worst.is_finite() && own.is_finite()).then_some((worst, own));
             }
         }
@@ -237,7 +242,7 @@ impl Atlas {
             .filter_map(|h| Some((h, atlas.neighbours(h.angle_deg)?)))
             .flat_map(|(h, neighbours)| {
                 (0..SEGMENTS.len())
-                    .filter_map(move |j| Some(h.bound[j].or(h.floor[j])? / neighbours[j]?))
+                    .filter_map(move |j| Some(h.bound[j].or(h.floor(j))? / neighbours[j]?))
             })
             .fold(1.0, f64::max);
         Ok(atlas)

@@ -6,11 +6,19 @@ fn csv(rows: &[(&str, f64, [f64; SEGMENTS.len()])]) -> String {
     let mut text =
         "set,angle_deg,segments,worst,reference_segments,reference_own_error\n".to_owned();
     for (set, angle, errors) in rows {
-        for (n, e) in SEGMENTS.iter().zip(errors) {
-            text += &format!("{set},{angle},{n},{e:e},1600,0\n");
-        }
+        text += &row_against(set, *angle, errors, "0");
     }
     text
+}
+
+/// One angle's lines, every entry measured against a reference whose own error is `own` (as
+/// written in the file).
+fn row_against(set: &str, angle: f64, errors: &[f64; SEGMENTS.len()], own: &str) -> String {
+    SEGMENTS
+        .iter()
+        .zip(errors)
+        .map(|(n, e)| format!("{set},{angle},{n},{e:e},1600,{own}\n"))
+        .collect()
 }
 
 /// Errors c/N at every N.
@@ -107,8 +115,8 @@ fn the_interpolated_law_at_each_held_out_angle_holds_where_that_angle_was_measur
                     continue;
                 };
                 let chosen = model.segments_for(tolerance);
-                for (n, floor) in SEGMENTS.iter().zip(held.floor) {
-                    let at_least = floor.unwrap_or(0.0);
+                for (j, n) in SEGMENTS.iter().enumerate() {
+                    let at_least = held.floor(j).unwrap_or(0.0);
                     assert!(
                         *n < chosen || at_least <= tolerance,
                         "{name}, {}° at {tolerance:e}: N = {chosen} chosen, but at N = {n} \
@@ -259,9 +267,7 @@ fn a_constant_that_falls_with_n_is_used_only_from_where_it_falls() {
 fn an_entry_whose_reference_is_too_coarse_ends_the_row() {
     let mut text = csv(&[("atlas", 10.0, law(0.2))]);
     // The 0° row: its reference's own error 1e-3, above a tenth of every error past N = 50.
-    for (n, e) in SEGMENTS.iter().zip(law(0.5)) {
-        text += &format!("atlas,0,{n},{e:e},1600,1e-3\n");
-    }
+    text += &row_against("atlas", 0.0, &law(0.5), "1e-3");
     let atlas = Atlas::parse(&text, WINDOW).unwrap();
     let release = Scene::Release { angle_deg: 0.0 };
     assert_eq!(
@@ -278,9 +284,7 @@ fn an_angles_own_entry_serves_what_its_reference_can_judge_though_the_law_would_
     // is out of reach. Its own row still bounds the error at 1131 by 9.7e-5, and the
     // reference could judge 1e-4 (9e-6 ≤ 1e-5).
     let mut text = csv(&[("atlas", 0.0, law(0.1))]);
-    for (n, e) in SEGMENTS.iter().zip(law(0.1)) {
-        text += &format!("atlas,10,{n},{e:e},1600,9e-6\n");
-    }
+    text += &row_against("atlas", 10.0, &law(0.1), "9e-6");
     let atlas = Atlas::parse(&text, WINDOW).unwrap();
     let at = |angle_deg, eps| {
         let model = atlas.model(&Scene::Release { angle_deg }, 3.0, eps)?;
