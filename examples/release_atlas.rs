@@ -19,6 +19,11 @@
 //! Each row runs to N = 1131, the chain's below 20° to 3200 where its reference could judge
 //! 1e-4 ([`reach`]); `--to N` sets another end (one of [`SEGMENTS`]).
 //!
+//! `release_atlas graded --add 1600`: each angle's entry at that one N (one of [`SEGMENTS`])
+//! alone, to be added to its committed row, against a reference refined from N = 1600 until
+//! it could judge 1e-4 ([`ADDED_REFINED_TO`]; runs up to N = 12 800);
+//! `scripts/release-atlas.sh graded --add 1600` merges the entries into `graded-atlas.csv`.
+//!
 //! A reference whose own error is above [`REFINED_TO`] is made from N = 1600, 3200 and 6400
 //! instead. The graded rods' is doubled once more (to at most [`TWICE_REFINED`]) where it
 //! keeps the atlas from trusting an entry it needs: at an atlas angle, any entry (the choices
@@ -65,6 +70,11 @@ const CHAIN_ALONE_TO: usize = 3200;
 /// The tolerance the chain's rows below [`GRADED_FROM`] are measured on for.
 const CHAIN_ALONE_FOR: f64 = 1e-4;
 
+/// The own error the reference of an added entry (`--add N`) is refined towards: a tenth of
+/// 1e-4, so that the entry may serve 1e-4 (the tolerance check's rule), its bound its error
+/// plus at most this.
+const ADDED_REFINED_TO: f64 = REFERENCE_MARGIN * CHAIN_ALONE_FOR;
+
 /// A reference's own error below this is round-off (the vertical release hangs still): no
 /// doubling can make the atlas trust errors of that size.
 const ROUND_OFF: f64 = 1e-12;
@@ -73,6 +83,8 @@ fn main() -> anyhow::Result<()> {
     let mut method = MethodKind::Chain;
     let mut window = WINDOW;
     let mut to = None;
+    // Only this N, to add to the committed rows (`--add N`).
+    let mut add = None;
     // Only these angles, where given (to remeasure some rows).
     let mut only: Option<Vec<f64>> = None;
     let mut args = std::env::args().skip(1);
@@ -89,22 +101,25 @@ fn main() -> anyhow::Result<()> {
                         anyhow::anyhow!("--until takes a duration > 0 ({value:?} given)")
                     })?;
             }
-            "--to" => {
+            flag @ ("--to" | "--add") => {
                 let value = args.next().unwrap_or_default();
-                to = value
+                let n = value
                     .parse()
                     .ok()
                     .filter(|n| SEGMENTS.contains(n))
-                    .map(Some)
                     .ok_or_else(|| {
-                        anyhow::anyhow!("--to takes one of {SEGMENTS:?} ({value:?} given)")
+                        anyhow::anyhow!("{flag} takes one of {SEGMENTS:?} ({value:?} given)")
                     })?;
+                match flag {
+                    "--to" => to = Some(n),
+                    _ => add = Some(n),
+                }
             }
             list if only.is_none() && list.starts_with(|c: char| c.is_ascii_digit()) => {
                 only = Some(list.split(',').map(str::parse).collect::<Result<_, _>>()?);
             }
             other => anyhow::bail!(
-                "usage: release_atlas [graded] [--until T] [--to N] [ANGLES] ({other:?} given)"
+                "usage: release_atlas [graded] [--until T] [--to N | --add N] [ANGLES] ({other:?} given)"
             ),
         }
     }
@@ -117,10 +132,10 @@ fn main() -> anyhow::Result<()> {
     // reference within 1e-5), refined once at most: the further doubling weighs what the
     // atlas to t = 3 needs, so it is for that atlas alone.
     let longer = window > WINDOW;
-    let refined_to = if longer {
-        LONGER_REFINED_TO
-    } else {
-        REFINED_TO
+    let (refined_to, most) = match (longer, add) {
+        (true, _) => (LONGER_REFINED_TO, REFINED_SEGMENTS),
+        (false, Some(_)) => (ADDED_REFINED_TO, TWICE_REFINED),
+        (false, None) => (REFINED_TO, REFINED_SEGMENTS),
     };
     let set = |a: f64| match HELD_OUT_ANGLES.contains(&a) {
         true => "held-out",
@@ -152,7 +167,7 @@ fn main() -> anyhow::Result<()> {
                 method,
                 &scene,
                 REFERENCE_SEGMENTS,
-                REFINED_SEGMENTS,
+                most,
                 refined_to,
                 window,
             )?;
@@ -160,7 +175,7 @@ fn main() -> anyhow::Result<()> {
                 let to = to.unwrap_or_else(|| reach(method, angle_deg, reference.own_error));
                 SEGMENTS
                     .iter()
-                    .filter(|&&n| n <= to)
+                    .filter(|&&n| add.map_or(n <= to, |added| n == added))
                     .map(|&n| {
                         let dt = method.tolerance_dt(n);
                         let worst = measure(method, &scene, n, dt, window, false, reference)
@@ -172,6 +187,7 @@ fn main() -> anyhow::Result<()> {
             let mut worst = row(&reference);
             if method == MethodKind::Graded
                 && !longer
+                && add.is_none()
                 && reference.segments * 2 <= TWICE_REFINED
                 && reference.own_error > ROUND_OFF
                 && keeps_out(set, angle_deg, &worst, reference.own_error)

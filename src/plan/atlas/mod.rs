@@ -22,7 +22,7 @@
 //! reference's own). Between the atlas's N, the error is taken as first order from the largest
 //! constant (error × N) at that N and above, from errors at least ten times their references' own.
 //! The atlas serves only what it measured: the rods, a release, runs to t ≤ 3, N ≤ 566 (from
-//! 10° 3200, the graded rods' 1131); elsewhere the method's one law stands. The graded rods have a
+//! 10° 3200, the graded rods' 1600); elsewhere the method's one law stands. The graded rods have a
 //! second atlas, to t = 5 from 40° ([`LONGER_WINDOW`], [`LONGER_FROM`]), for runs from t = 3 to 5,
 //! where the one law, fitted to t ≤ 3, does not cover the run and the pilots' figure rules instead.
 
@@ -39,7 +39,7 @@ pub const HELD_OUT_ANGLES: [f64; 9] = [5.0, 15.0, 25.0, 35.0, 45.0, 55.0, 65.0, 
 
 /// The segment counts an angle may be measured at (√2 apart from 50 up). The chain's atlas was
 /// measured to 566 (from 10° to 3200: the chain needs about 2000 rods for 1e-4 there, and no
-/// other rods may be chosen), the graded rods' to 1131.
+/// other rods may be chosen), the graded rods' to 1131 and, at every angle, at 1600.
 pub const SEGMENTS: [usize; 16] = [
     16, 25, 32, 50, 64, 100, 141, 200, 283, 400, 566, 800, 1131, 1600, 2263, 3200,
 ];
