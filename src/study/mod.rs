@@ -14,7 +14,10 @@
 //! * [`estimate_check`]: `--estimate-check`, the live error estimate against the truth, and
 //!   the error models over all the scenes; [`check_chart`]: its chart;
 //! * [`tolerance_check`]: `--tolerance-check`, what `--tolerance` chooses against the truth
-//!   and against the cheapest run of a grid; [`tolerance_chart`]: its chart.
+//!   and against the cheapest run of a grid; [`tolerance_chart`]: its chart;
+//! * [`tip_reference`]: the converged tip those checks and the release atlas judge runs
+//!   against, from runs at [`trajectory`]; [`run_cache`]: those runs kept on disk
+//!   (`ROPE_RUN_CACHE`), to be read instead of run again.
 
 pub mod atlas_chart;
 pub mod axes;
@@ -29,6 +32,7 @@ pub mod long_run;
 pub mod record;
 pub mod reference;
 pub mod report;
+pub mod run_cache;
 pub mod shard;
 pub mod sweep_chart;
 pub mod tip_reference;

@@ -1,6 +1,7 @@
 //! A run's tip at every one of its steps, to be read at any time: what a study's errors are
 //! measured against at every frame.
 
+use super::run_cache;
 use crate::error::Diverged;
 use crate::methods::chain::Chain;
 use crate::methods::{Method, MethodKind};
@@ -42,21 +43,25 @@ impl Trajectory {
         Self::compute_by(MethodKind::REFERENCE, scene, segments, duration)
     }
 
-    /// `method` at `segments` and its default step, from `scene` to `duration`.
+    /// `method` at `segments` and its default step, from `scene` to `duration`; read back
+    /// instead where a folder of kept runs holds it, and kept there once run
+    /// ([`run_cache`](super::run_cache)).
     pub fn compute_by(
         method: MethodKind,
         scene: &Scene,
         segments: usize,
         duration: f64,
     ) -> anyhow::Result<Self> {
-        Ok(Self::keep(
-            scene,
-            method,
-            segments,
-            method.default_dt(segments),
-            duration,
-        )?
-        .trajectory)
+        let dt = method.default_dt(segments);
+        let kept = run_cache::Kept::of(method, scene, segments, dt, duration);
+        if let Some((dt, tips)) = kept.as_ref().and_then(run_cache::Kept::load) {
+            return Ok(Self::new(dt, tips));
+        }
+        let run = Self::keep(scene, method, segments, dt, duration)?.trajectory;
+        if let Some(kept) = kept {
+            kept.store(run.dt, &run.tips)?;
+        }
+        Ok(run)
     }
 
     /// As [`Trajectory::compute`], on `segments` rods graded towards the free end with
