@@ -27,15 +27,15 @@ fn main() -> anyhow::Result<()> {
     rope::study::charts::register_font()?;
     rope::study::atlas_chart::write(dir, name, rods, &atlas)?;
     println!(
-        "the margin the held-out angles measure: {:.3}\n",
-        atlas.margin
+        "the margin the held-out angles measure: {:.3}; the envelope's: {:.3}\n",
+        atlas.margin, atlas.envelope_margin
     );
     print!("{}", table(&text, &atlas));
     Ok(())
 }
 
 /// The columns of the table: the atlas's N, every other one or so.
-const COLUMNS: [usize; 8] = [16, 32, 64, 141, 283, 566, 800, 1131];
+const COLUMNS: [usize; 9] = [16, 32, 64, 141, 283, 566, 800, 1131, 1600];
 
 /// Each atlas angle's reference (N, own error) and worst tip error × N where the atlas trusts
 /// it ([`Atlas::rows`]), as a Markdown table of the [`COLUMNS`] the atlas measured. The

@@ -273,6 +273,7 @@ fn tolerance_check(
     let spec = match size {
         CheckSize::Full => CheckSpec::default(),
         CheckSize::Quick => CheckSpec::quick(),
+        CheckSize::Unseen => CheckSpec::unseen(),
     };
     let grid_runs: usize = spec
         .grid

@@ -35,10 +35,17 @@ fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, atlas: &Atlas, rods: 
         .max()
         .unwrap_or(566);
     let (lo, hi) = (10.0, 1.4 * finest as f64);
-    // Room above the largest constant and the law's line (to t = 3 they stay below 0.6).
+    // Every angle's largest bound times the envelope's margin: an unmeasured angle's bound.
+    let envelope: Vec<(f64, f64)> = atlas
+        .envelope()
+        .map(|(n, bound)| (n as f64, bound * n as f64))
+        .collect();
+    // Room above the largest constant, the envelope's and the law's line (to t = 3 they stay
+    // below 0.6).
     let top = rows
         .iter()
         .flat_map(|(_, points)| points.iter().map(|&(n, e)| e * n as f64))
+        .chain(envelope.iter().map(|&(_, c)| c))
         .fold(0.6, |top: f64, c| top.max(1.15 * c));
     let mut chart = ChartBuilder::on(root)
         .caption(
@@ -83,6 +90,14 @@ fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, atlas: &Atlas, rods: 
             .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], colour.stroke_width(2)));
         chart.draw_series(line.into_iter().map(|p| Circle::new(p, 3, colour.filled())))?;
     }
+    let grey = RGBColor(110, 110, 110);
+    chart
+        .draw_series(DashedLineSeries::new(envelope, 7, 5, grey.stroke_width(3)))?
+        .label(format!(
+            "every angle's largest bound × {:.2}: an angle between them",
+            atlas.envelope_margin
+        ))
+        .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], grey.stroke_width(3)));
     // Above the lines, which fall below 0.4 past N = 100 at every angle.
     legend(
         chart.configure_series_labels(),

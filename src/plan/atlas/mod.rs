@@ -21,6 +21,12 @@
 //! too coarse to bound its error, what the error is at least: the measured error less the
 //! reference's own). Between the atlas's N, the error is taken as first order from the largest
 //! constant (error × N) at that N and above, from errors at least ten times their references' own.
+//! Between the atlas's first and last angles, a tolerance may also be met by an N where every
+//! angle was measured: the largest bound among them all (their envelope) times how far one angle
+//! strays above all the others there at most (the envelope's margin, each angle left out in turn),
+//! wherever that asks fewer segments than the neighbours' law. Two neighbours may dip together at
+//! one N (from 30° and 40° at N = 1 131 the graded rods err by 1.8e-5, 35° between them by
+//! 6.6e-5): the neighbours' margin then grows with the dip, where the envelope's does not.
 //! The atlas serves only what it measured: the rods, a release, runs to t ≤ 3, N ≤ 566 (from
 //! 10° 3200, the graded rods' 1600); elsewhere the method's one law stands. The graded rods have a
 //! second atlas, to t = 5 from 40° ([`LONGER_WINDOW`], [`LONGER_FROM`]), for runs from t = 3 to 5,
@@ -110,8 +116,23 @@ pub struct Atlas {
     /// The largest ratio of a held-out angle's error to the larger of its neighbours' (≥ 1),
     /// over every N where both are trusted.
     pub margin: f64,
+    /// At each of [`SEGMENTS`] where every angle (the atlas's and the held-out) was measured:
+    /// the largest bound among them (measured error plus its reference's own), and the largest
+    /// own error of their references (what tolerance the envelope can serve).
+    envelope: [Option<Envelope>; SEGMENTS.len()],
+    /// The largest ratio of one angle's bound to the envelope of all the others' (≥ 1), over
+    /// every N where the envelope is: how far an angle may stray above every other angle's.
+    pub envelope_margin: f64,
     /// The simulated time its worst errors were measured over: it serves runs no longer.
     pub window: f64,
+}
+
+/// The largest bound over every measured angle at one N.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Envelope {
+    bound: f64,
+    /// The largest own error of the references the bounds were measured against.
+    own: f64,
 }
 
 /// Why the atlas file could not be read (a test reads the committed one).
@@ -232,8 +253,11 @@ impl Atlas {
             rows,
             held_out,
             margin: 1.0,
+            envelope: [None; SEGMENTS.len()],
+            envelope_margin: 1.0,
             window,
         };
+        (atlas.envelope, atlas.envelope_margin) = atlas.envelope_and_margin();
         // At each N where the neighbours are trusted: the held-out angle's bound where it is
         // trusted, else what its error is at least.
         atlas.margin = atlas
@@ -246,6 +270,47 @@ impl Atlas {
             })
             .fold(1.0, f64::max);
         Ok(atlas)
+    }
+
+    /// The envelope of every measured angle's bounds at each N where all were measured, and
+    /// its leave-one-out margin: at each such N, each angle's bound over the largest of all
+    /// the others' (conservative: the left-out angle's error is taken at its bound).
+    fn envelope_and_margin(&self) -> ([Option<Envelope>; SEGMENTS.len()], f64) {
+        let every: Vec<&Row> = self.rows.iter().chain(&self.held_out).collect();
+        let mut margin = 1f64;
+        let envelope = std::array::from_fn(|j| {
+            let entries: Vec<(f64, f64)> =
+                every.iter().map(|r| r.measured[j]).collect::<Option<_>>()?;
+            let bounds: Vec<f64> = entries.iter().map(|(worst, own)| worst + own).collect();
+            for (i, bound) in bounds.iter().enumerate() {
+                let others = bounds
+                    .iter()
+                    .enumerate()
+                    .filter(|&(k, _)| k != i)
+                    .map(|(_, b)| *b)
+                    .fold(0.0, f64::max);
+                if others > 0.0 {
+                    margin = margin.max(bound / others);
+                }
+            }
+            Some(Envelope {
+                bound: bounds.iter().copied().fold(0.0, f64::max),
+                own: entries.iter().map(|(_, own)| *own).fold(0.0, f64::max),
+            })
+        });
+        (envelope, margin)
+    }
+
+    /// The envelope times its margin, as (N, bound) at each N where every angle was measured
+    /// and it could serve a tolerance that large (its references' own errors at most
+    /// [`REFERENCE_MARGIN`] times it): what the atlas bounds an angle between its own by (the
+    /// chart draws it).
+    pub fn envelope(&self) -> impl Iterator<Item = (usize, f64)> + '_ {
+        SEGMENTS.iter().zip(&self.envelope).filter_map(|(&n, e)| {
+            let e = e.as_ref()?;
+            let bound = e.bound * self.envelope_margin;
+            (e.own <= REFERENCE_MARGIN * bound).then_some((n, bound))
+        })
     }
 
     /// Each atlas angle's trusted bounds, as (N, worst error) from N = 16 up: what the chart
@@ -278,7 +343,7 @@ impl Atlas {
         }))
     }
 
-    /// The rods' error model from `scene` to `duration` for `tolerance`: of the two below, the
+    /// The rods' error model from `scene` to `duration` for `tolerance`: of the three below, the
     /// one that asks fewer segments; `None` for a mode, a run longer than its window, or a
     /// tolerance neither reaches.
     /// - At an angle the atlas measured, that angle's own row: the fewest N it measured whose
@@ -286,6 +351,9 @@ impl Atlas {
     /// - Everywhere, the interpolated law: first order, its constant the largest error × N of
     ///   the angle's neighbours (times [`Atlas::margin`]) at the fewest N of the atlas from
     ///   which it holds `tolerance`.
+    /// - Between the atlas's angles, the envelope: the fewest N whose largest bound over every
+    ///   angle measured, times [`Atlas::envelope_margin`], holds `tolerance`
+    ///   (`Atlas::enveloped`).
     pub fn model(&self, scene: &Scene, duration: f64, tolerance: f64) -> Option<ErrorModel> {
         let Scene::Release { angle_deg } = *scene else {
             return None;
@@ -295,7 +363,8 @@ impl Atlas {
         }
         let measured = self.measured(angle_deg, tolerance);
         let interpolated = self.interpolated(angle_deg, tolerance);
-        [measured, interpolated]
+        let enveloped = self.enveloped(angle_deg, tolerance);
+        [measured, interpolated, enveloped]
             .into_iter()
             .flatten()
             .min_by_key(|model| model.segments_for(tolerance))
@@ -305,8 +374,7 @@ impl Atlas {
     /// (the measured worst error plus its reference's own) is within `tolerance`, measured
     /// against a reference that could judge `tolerance` (its own error at most
     /// [`REFERENCE_MARGIN`] × `tolerance`, the tolerance check's rule), as a law that asks
-    /// exactly that N for `tolerance` (its bound there is just under `tolerance`, and at least
-    /// what was measured); `None` at another angle, or where no such N holds it. An entry need
+    /// exactly that N ([`asking`]); `None` at another angle, or where no such N holds it. An entry need
     /// not be trusted for the margin (its error ten times its reference's own): a bound is a
     /// bound, and nothing is interpolated from it.
     fn measured(&self, angle_deg: f64, tolerance: f64) -> Option<ErrorModel> {
@@ -320,11 +388,25 @@ impl Atlas {
                 own <= REFERENCE_MARGIN * tolerance && worst + own <= tolerance
             })
         })?;
-        Some(ErrorModel {
-            constant: tolerance * (SEGMENTS[j] as f64 - 0.5),
-            order: 1.0,
-            safety: 1.0,
-        })
+        Some(asking(SEGMENTS[j], tolerance))
+    }
+
+    /// Between the atlas's first and last angles, the fewest of [`SEGMENTS`] whose envelope
+    /// (the largest bound of every angle measured there) times [`Atlas::envelope_margin`] is
+    /// within `tolerance`, where every reference could judge `tolerance` (as
+    /// [`Atlas::measured`]), as a law that asks exactly that N ([`asking`]); `None` outside those angles or
+    /// where no such N holds it.
+    fn enveloped(&self, angle_deg: f64, tolerance: f64) -> Option<ErrorModel> {
+        let (first, last) = (self.rows.first()?, self.rows.last()?);
+        if !(first.angle_deg..=last.angle_deg).contains(&angle_deg) {
+            return None;
+        }
+        let j = self.envelope.iter().position(|envelope| {
+            envelope.is_some_and(|e| {
+                e.own <= REFERENCE_MARGIN * tolerance && e.bound * self.envelope_margin <= tolerance
+            })
+        })?;
+        Some(asking(SEGMENTS[j], tolerance))
     }
 
     /// The first-order law from the neighbours' rows times the margin (see [`Atlas::model`]).
@@ -363,6 +445,16 @@ impl Atlas {
             order: 1.0,
             safety: self.margin,
         })
+    }
+}
+
+/// A first-order law that asks exactly `segments` for `tolerance`: its bound there is just
+/// under `tolerance`, and at least what was measured.
+fn asking(segments: usize, tolerance: f64) -> ErrorModel {
+    ErrorModel {
+        constant: tolerance * (segments as f64 - 0.5),
+        order: 1.0,
+        safety: 1.0,
     }
 }
 

@@ -203,9 +203,13 @@ fn at_a_held_out_angle_its_own_row_is_chosen_without_the_margin() {
         Some(model.segments_for(1e-3))
     };
     // At 5° its own 0.2/N holds 1e-3 from N = 200; the law from 0° and 10° with the margin
-    // would ask 0.4 × 2 / 1e-3 = 800. A hair off it, the law.
+    // would ask 0.4 × 2 / 1e-3 = 800. A hair off it, the law or the envelope: 0.4/N (0° and
+    // 15°, neither above the other: its margin is 1) holds 1e-3 from 400.
     assert_eq!(at(5.0), Some(200));
-    assert_eq!(at(5.5), Some(800));
+    let law_there = atlas.interpolated(5.5, 1e-3).map(|m| m.segments_for(1e-3));
+    assert_eq!(law_there, Some(800));
+    assert_eq!(atlas.envelope_margin, 1.0);
+    assert_eq!(at(5.5), Some(400));
     // At 15° its own 0.4/N asks 400 (the next measured N past 400: 400 itself); the law
     // from 10° and 20° with the margin the same, 0.2 × 2 / 1e-3 = 400.
     assert_eq!(at(15.0), Some(400));
@@ -292,9 +296,93 @@ fn an_angles_own_entry_serves_what_its_reference_can_judge_though_the_law_would_
     };
     assert_eq!(at(10.0, 1e-4), Some(1131));
     // Between 0° and 10° the law is from trusted entries only: to N = 800, 1.25e-4.
-    assert_eq!(at(5.0, 1e-4), None);
+    assert_eq!(atlas.interpolated(5.0, 1e-4), None);
+    // The envelope takes every entry at its bound: at N = 1600, 0.1/1600 + 9e-6 = 7.2e-5,
+    // times its margin (10°'s bound over 0°'s, largest at N = 3200: 1.29), 9.2e-5.
+    assert!((atlas.envelope_margin - (1.0 + 9e-6 * 3200.0 / 0.1)).abs() < 1e-9);
+    assert_eq!(at(5.0, 1e-4), Some(1600));
     // A reference that could not judge 1e-4 (own error 1.1e-5) serves it nowhere.
     let coarse = Atlas::parse(&text.replace(",9e-6", ",1.1e-5"), WINDOW).unwrap();
     let model = coarse.model(&Scene::Release { angle_deg: 10.0 }, 3.0, 1e-4);
     assert!(model.is_none(), "{model:?}");
+}
+
+/// Errors 0.1/N from 0°, 15° (held out) and, but at N = 1131, where they dip to 0.01/N, from
+/// 10° and 20°: the neighbours' margin is 10 (15° against 10° and 20° at N = 1131), the
+/// envelope's 1 (no angle strays above every other).
+fn a_dip_at_1131() -> Atlas {
+    let mut dipping = law(0.1);
+    dipping[SEGMENTS.iter().position(|&n| n == 1131).unwrap()] = 0.01 / 1131.0;
+    let text = csv(&[
+        ("atlas", 0.0, law(0.1)),
+        ("atlas", 10.0, dipping),
+        ("atlas", 20.0, dipping),
+        ("held-out", 15.0, law(0.1)),
+    ]);
+    Atlas::parse(&text, WINDOW).unwrap()
+}
+
+#[test]
+fn an_unseen_angle_takes_the_envelope_of_every_angle_where_its_neighbours_dip_together() {
+    let atlas = a_dip_at_1131();
+    assert!((atlas.margin - 10.0).abs() < 1e-9, "{}", atlas.margin);
+    assert_eq!(atlas.envelope_margin, 1.0);
+    let at = |angle_deg, eps| {
+        let model = atlas.model(&Scene::Release { angle_deg }, 3.0, eps)?;
+        Some(model.segments_for(eps))
+    };
+    // At 12°, the envelope 0.1/N holds 1e-3 from N = 100; the neighbours' law, 0.1 × 10 /
+    // 1e-3, would ask 1000.
+    assert_eq!(
+        atlas.enveloped(12.0, 1e-3).map(|m| m.segments_for(1e-3)),
+        Some(100)
+    );
+    assert_eq!(
+        atlas.interpolated(12.0, 1e-3).map(|m| m.segments_for(1e-3)),
+        Some(1000)
+    );
+    assert_eq!(at(12.0, 1e-3), Some(100));
+    // 1e-4 from N = 1131, where the envelope (0° and 15°) is 8.8e-5.
+    assert_eq!(at(12.0, 1e-4), Some(1131));
+    // Outside the atlas's angles, nothing.
+    assert_eq!(at(25.0, 1e-3), None);
+}
+
+#[test]
+fn the_envelope_margin_is_how_far_one_angle_strays_above_all_the_others() {
+    // 20° errs by 0.15/N at N = 200, 1.5 times every other angle there.
+    let mut straying = law(0.1);
+    straying[SEGMENTS.iter().position(|&n| n == 200).unwrap()] = 0.15 / 200.0;
+    let text = csv(&[
+        ("atlas", 0.0, law(0.1)),
+        ("atlas", 10.0, law(0.1)),
+        ("atlas", 20.0, straying),
+    ]);
+    let atlas = Atlas::parse(&text, WINDOW).unwrap();
+    assert!((atlas.envelope_margin - 1.5).abs() < 1e-9);
+    // 0.1/N × 1.5 holds 1e-3 from N = 150, but at N = 200 the envelope is 20°'s 0.15/200:
+    // × 1.5, 1.1e-3. So N = 283.
+    let model = atlas.enveloped(5.0, 1e-3).unwrap();
+    assert_eq!(model.segments_for(1e-3), 283);
+}
+
+#[test]
+fn the_envelope_serves_only_where_every_angle_was_measured_against_a_reference_that_could_judge() {
+    let mut text = csv(&[("atlas", 0.0, law(0.1)), ("held-out", 15.0, law(0.1))]);
+    // 10°, unmeasured at N = 100 and measured at 141 against a reference whose own error,
+    // 2e-4, could not judge 1e-3 (a tenth of it at most).
+    for (n, e) in SEGMENTS.iter().zip(law(0.1)) {
+        match n {
+            100 => {}
+            141 => text += &format!("atlas,10,{n},{e:e},1600,2e-4\n"),
+            _ => text += &format!("atlas,10,{n},{e:e},1600,0\n"),
+        }
+    }
+    text += &row_against("atlas", 20.0, &law(0.1), "0");
+    let atlas = Atlas::parse(&text, WINDOW).unwrap();
+    let model = atlas.enveloped(12.0, 1e-3).unwrap();
+    assert_eq!(model.segments_for(1e-3), 200);
+    // 2e-2 may be judged against it: from N = 141 (0.1/141 + 2e-4 = 9.1e-4 ≤ 2e-2… but at
+    // N = 16, 6.3e-3, already).
+    assert_eq!(atlas.enveloped(12.0, 2e-2).unwrap().segments_for(2e-2), 16);
 }
