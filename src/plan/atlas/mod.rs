@@ -309,7 +309,7 @@ impl Atlas {
         SEGMENTS.iter().zip(&self.envelope).filter_map(|(&n, e)| {
             let e = e.as_ref()?;
             let bound = e.bound * self.envelope_margin;
-            (e.own <= REFERENCE_MARGIN * bound).then_some((n, bound))
+            serves(bound, e.own, bound).then_some((n, bound))
         })
     }
 
@@ -374,9 +374,9 @@ impl Atlas {
     /// (the measured worst error plus its reference's own) is within `tolerance`, measured
     /// against a reference that could judge `tolerance` (its own error at most
     /// [`REFERENCE_MARGIN`] × `tolerance`, the tolerance check's rule), as a law that asks
-    /// exactly that N ([`asking`]); `None` at another angle, or where no such N holds it. An entry need
-    /// not be trusted for the margin (its error ten times its reference's own): a bound is a
-    /// bound, and nothing is interpolated from it.
+    /// exactly that N ([`asking`]); `None` at another angle, or where no such N holds it. An
+    /// entry need not be trusted for the margin (its error ten times its reference's own): a
+    /// bound is a bound, and nothing is interpolated from it.
     fn measured(&self, angle_deg: f64, tolerance: f64) -> Option<ErrorModel> {
         let row = self
             .rows
@@ -384,9 +384,7 @@ impl Atlas {
             .chain(&self.held_out)
             .find(|r| r.angle_deg == angle_deg)?;
         let j = row.measured.iter().position(|entry| {
-            entry.is_some_and(|(worst, own)| {
-                own <= REFERENCE_MARGIN * tolerance && worst + own <= tolerance
-            })
+            entry.is_some_and(|(worst, own)| serves(worst + own, own, tolerance))
         })?;
         Some(asking(SEGMENTS[j], tolerance))
     }
@@ -394,17 +392,15 @@ impl Atlas {
     /// Between the atlas's first and last angles, the fewest of [`SEGMENTS`] whose envelope
     /// (the largest bound of every angle measured there) times [`Atlas::envelope_margin`] is
     /// within `tolerance`, where every reference could judge `tolerance` (as
-    /// [`Atlas::measured`]), as a law that asks exactly that N ([`asking`]); `None` outside those angles or
-    /// where no such N holds it.
+    /// [`Atlas::measured`]), as a law that asks exactly that N ([`asking`]); `None` outside
+    /// those angles or where no such N holds it.
     fn enveloped(&self, angle_deg: f64, tolerance: f64) -> Option<ErrorModel> {
         let (first, last) = (self.rows.first()?, self.rows.last()?);
         if !(first.angle_deg..=last.angle_deg).contains(&angle_deg) {
             return None;
         }
         let j = self.envelope.iter().position(|envelope| {
-            envelope.is_some_and(|e| {
-                e.own <= REFERENCE_MARGIN * tolerance && e.bound * self.envelope_margin <= tolerance
-            })
+            envelope.is_some_and(|e| serves(e.bound * self.envelope_margin, e.own, tolerance))
         })?;
         Some(asking(SEGMENTS[j], tolerance))
     }
@@ -446,6 +442,13 @@ impl Atlas {
             safety: self.margin,
         })
     }
+}
+
+/// Whether `bound` holds `tolerance`, measured against references whose own error, at most
+/// `own`, could judge it (at most [`REFERENCE_MARGIN`] × `tolerance`: the tolerance check's
+/// rule).
+fn serves(bound: f64, own: f64, tolerance: f64) -> bool {
+    own <= REFERENCE_MARGIN * tolerance && bound <= tolerance
 }
 
 /// A first-order law that asks exactly `segments` for `tolerance`: its bound there is just
