@@ -6,7 +6,6 @@
 
 use crate::methods::MethodKind;
 use crate::model::{Point, Scene};
-use anyhow::Context as _;
 use std::io::{BufRead as _, Read as _, Write as _};
 use std::path::{Path, PathBuf};
 
@@ -101,15 +100,16 @@ impl Kept {
     }
 
     /// Keeps the run of step `dt` and tips `tips` (written whole to a file of its own, then
-    /// moved into place, so that a run stopped while writing leaves nothing half-written).
+    /// moved into place, so that a run stopped while writing leaves nothing half-written, and
+    /// a write that fails leaves nothing at all).
     pub fn store(&self, dt: f64, tips: &[Point]) -> anyhow::Result<()> {
+        let partial = self
+            .path
+            .with_extension(format!("partial-{}", std::process::id()));
         let write = || -> std::io::Result<()> {
             if let Some(folder) = self.path.parent() {
                 std::fs::create_dir_all(folder)?;
             }
-            let partial = self
-                .path
-                .with_extension(format!("partial-{}", std::process::id()));
             let mut out = std::io::BufWriter::new(std::fs::File::create(&partial)?);
             writeln!(out, "{}", self.header)?;
             writeln!(out, "{:016x} {}", dt.to_bits(), tips.len())?;
@@ -120,13 +120,37 @@ impl Kept {
             out.into_inner().map_err(|e| e.into_error())?.sync_all()?;
             std::fs::rename(&partial, &self.path)
         };
-        write().with_context(|| {
-            format!(
+        write().map_err(|error| {
+            // Nothing half-written is left behind; the file may never have been made.
+            let _ = std::fs::remove_file(&partial);
+            anyhow::Error::new(error).context(format!(
                 "keeping a run in {} (the folder {ENV} names)",
                 self.path.display()
-            )
+            ))
         })
     }
+}
+
+/// The run `compute` makes (its step and its tip at every step), read back instead where
+/// `kept` holds it, and kept there once made. A run that cannot be kept (the folder is not
+/// writable, the disk is full) is not lost: it is returned all the same, and the first such
+/// failure is told on stderr, once, as a warning (the runs this keeps take up to twenty
+/// minutes; a study should not lose them to a folder that only saves time).
+pub fn computed_or_kept(
+    kept: Option<Kept>,
+    compute: impl FnOnce() -> anyhow::Result<(f64, Vec<Point>)>,
+) -> anyhow::Result<(f64, Vec<Point>)> {
+    if let Some(run) = kept.as_ref().and_then(Kept::load) {
+        return Ok(run);
+    }
+    let (dt, tips) = compute()?;
+    if let Some(Err(error)) = kept.map(|kept| kept.store(dt, &tips)) {
+        static TOLD: std::sync::Once = std::sync::Once::new();
+        TOLD.call_once(|| {
+            eprintln!("rope: warning: {error:#}; the runs go on without being kept");
+        });
+    }
+    Ok((dt, tips))
 }
 
 #[cfg(test)]
@@ -158,6 +182,40 @@ mod tests {
         let bytes = std::fs::read(&kept.path).unwrap();
         std::fs::write(&kept.path, &bytes[..bytes.len() - 8]).unwrap();
         assert!(kept.load().is_none());
+        std::fs::remove_dir_all(&folder).unwrap();
+    }
+
+    #[test]
+    fn a_run_that_cannot_be_kept_is_returned_and_leaves_no_partial_file() {
+        let root = std::env::temp_dir().join(format!("rope-run-unkept-{}", std::process::id()));
+        std::fs::create_dir_all(&root).unwrap();
+        // The folder to keep runs in is a file: nothing can be written under it.
+        let blocker = root.join("not-a-folder");
+        std::fs::write(&blocker, b"a file").unwrap();
+        let scene = Scene::Release { angle_deg: 30.0 };
+        let kept = Kept::in_folder(&blocker, MethodKind::Chain, &scene, 16, 1e-3, 3.0);
+        let tips = vec![Point::new(0.5, -0.5), Point::new(0.25, -0.75)];
+        let stored = kept.store(1e-3, &tips);
+        assert!(stored.is_err(), "a file cannot hold a folder");
+        let run = computed_or_kept(Some(kept), || Ok((1e-3, tips.clone()))).unwrap();
+        assert_eq!(run, (1e-3, tips));
+        let left: Vec<_> = std::fs::read_dir(&root).unwrap().flatten().collect();
+        assert_eq!(left.len(), 1, "only the blocking file is left: {left:?}");
+        std::fs::remove_dir_all(&root).unwrap();
+    }
+
+    #[test]
+    fn a_write_that_fails_midway_leaves_no_partial_file() {
+        let folder = std::env::temp_dir().join(format!("rope-run-midway-{}", std::process::id()));
+        std::fs::create_dir_all(&folder).unwrap();
+        let scene = Scene::Release { angle_deg: 30.0 };
+        let kept = Kept::in_folder(&folder, MethodKind::Chain, &scene, 16, 1e-3, 3.0);
+        // The place the run would be moved to is a folder that is not empty: the rename fails
+        // after the partial file was written whole.
+        std::fs::create_dir_all(kept.path.join("occupied")).unwrap();
+        assert!(kept.store(1e-3, &[Point::new(0.5, -0.5)]).is_err());
+        let left: Vec<_> = std::fs::read_dir(&folder).unwrap().flatten().collect();
+        assert_eq!(left.len(), 1, "only the occupying folder is left: {left:?}");
         std::fs::remove_dir_all(&folder).unwrap();
     }
 }

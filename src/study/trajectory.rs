@@ -54,14 +54,11 @@ impl Trajectory {
     ) -> anyhow::Result<Self> {
         let dt = method.default_dt(segments);
         let kept = run_cache::Kept::of(method, scene, segments, dt, duration);
-        if let Some((dt, tips)) = kept.as_ref().and_then(run_cache::Kept::load) {
-            return Ok(Self::new(dt, tips));
-        }
-        let run = Self::keep(scene, method, segments, dt, duration)?.trajectory;
-        if let Some(kept) = kept {
-            kept.store(run.dt, &run.tips)?;
-        }
-        Ok(run)
+        let (dt, tips) = run_cache::computed_or_kept(kept, || {
+            let run = Self::keep(scene, method, segments, dt, duration)?.trajectory;
+            Ok((run.dt, run.tips))
+        })?;
+        Ok(Self::new(dt, tips))
     }
 
     /// As [`Trajectory::compute`], on `segments` rods graded towards the free end with
