@@ -9,11 +9,16 @@
 //! [DURATION]]]` (angles in degrees, the coarsest N, the finest N, the frames a time unit
 //! compared, 1000 unless given: the tolerance check's 60 misses the whip's peaks between its
 //! frames; rods graded towards the free end, s_i = 1 − (1 − i/N)^GRADING, where GRADING is
-//! given and not 1: `Chain::graded`; and the time run, 3 unless given).
+//! given and not 1: `Chain::graded`; the time run, 3 unless given; and a folder where, given,
+//! each release's reference from its three finest levels is written as
+//! `release-ANGLE.csv`: its tip and own error at every compared instant, as the tolerance
+//! check's `references.csv` gives them).
 
+use anyhow::Context as _;
 use rayon::prelude::*;
-use rope::model::Scene;
+use rope::model::{Point, Scene};
 use rope::study::trajectory::{Trajectory, frame_times};
+use std::io::Write as _;
 use std::time::Instant;
 
 /// Frames per time unit at which the levels are compared unless told: fine enough to judge
@@ -24,15 +29,19 @@ const DURATION: f64 = 3.0;
 
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let (angles, coarsest, finest, rate, grading, duration) = match args.as_slice() {
-        [a, c, f] => (a, c, f, COMPARE_RATE, 1.0, DURATION),
-        [a, c, f, r] => (a, c, f, r.parse()?, 1.0, DURATION),
-        [a, c, f, r, g] => (a, c, f, r.parse()?, g.parse()?, DURATION),
-        [a, c, f, r, g, d] => (a, c, f, r.parse()?, g.parse()?, d.parse()?),
+    let (angles, coarsest, finest, rate, grading, duration, out) = match args.as_slice() {
+        [a, c, f] => (a, c, f, COMPARE_RATE, 1.0, DURATION, None),
+        [a, c, f, r] => (a, c, f, r.parse()?, 1.0, DURATION, None),
+        [a, c, f, r, g] => (a, c, f, r.parse()?, g.parse()?, DURATION, None),
+        [a, c, f, r, g, d] => (a, c, f, r.parse()?, g.parse()?, d.parse()?, None),
+        [a, c, f, r, g, d, o] => (a, c, f, r.parse()?, g.parse()?, d.parse()?, Some(o)),
         _ => anyhow::bail!(
-            "usage: reference_convergence ANGLES COARSEST_N FINEST_N [RATE [GRADING [DURATION]]]"
+            "usage: reference_convergence ANGLES COARSEST_N FINEST_N [RATE [GRADING [DURATION [OUT_DIR]]]]"
         ),
     };
+    if let Some(out) = out {
+        std::fs::create_dir_all(out).with_context(|| format!("cannot create {out}"))?;
+    }
     let angles: Vec<f64> = angles
         .split(',')
         .map(str::parse)
@@ -54,6 +63,8 @@ fn main() -> anyhow::Result<()> {
                 Ok((path, started.elapsed().as_secs_f64()))
             })
             .collect::<anyhow::Result<_>>()?;
+        // The order the three finest levels show: their reference's.
+        let mut finest_order = None;
         for (i, &n) in levels.iter().enumerate() {
             let change = (i >= 1).then(|| runs[i].0.largest_gap(&runs[i - 1].0, &frames));
             let previous = (i >= 2).then(|| runs[i - 1].0.largest_gap(&runs[i - 2].0, &frames));
@@ -63,18 +74,12 @@ fn main() -> anyhow::Result<()> {
             // The own error of the extrapolation from this level and the one below, measured
             // as the change from the extrapolation one level coarser.
             let own = order.map(|p| {
-                let extrapolated = |f: &Trajectory, c: &Trajectory, t: f64| {
-                    f.at(t) + (f.at(t) - c.at(t)) / (2f64.powf(p) - 1.0)
-                };
                 frames
                     .iter()
-                    .map(|&t| {
-                        (extrapolated(&runs[i].0, &runs[i - 1].0, t)
-                            - extrapolated(&runs[i - 1].0, &runs[i - 2].0, t))
-                        .norm()
-                    })
+                    .map(|&t| own_error_at(&runs[i].0, &runs[i - 1].0, &runs[i - 2].0, p, t))
                     .fold(0.0, f64::max)
             });
+            finest_order = order;
             let show = |x: Option<f64>| x.map_or(String::new(), |x| format!("{x:.3e}"));
             println!(
                 "{angle_deg},{n},{:.1},{},{},{}",
@@ -84,6 +89,41 @@ fn main() -> anyhow::Result<()> {
                 show(own)
             );
         }
+        if let (Some(out), Some(order), [.., half, coarse, fine]) =
+            (out, finest_order, runs.as_slice())
+        {
+            let path = std::path::Path::new(out).join(format!("release-{angle_deg}.csv"));
+            let mut file = std::io::BufWriter::new(
+                std::fs::File::create(&path)
+                    .with_context(|| format!("cannot create {}", path.display()))?,
+            );
+            // The columns and precision of the tolerance check's `references.csv`.
+            writeln!(file, "scene,t,tip_x,tip_y,own_error")?;
+            for &t in &frames {
+                let tip = extrapolated(&fine.0, &coarse.0, order, t);
+                let own = own_error_at(&fine.0, &coarse.0, &half.0, order, t);
+                writeln!(file, "{scene},{t},{:.9},{:.9},{own:.1e}", tip.x, tip.y)?;
+            }
+            file.flush()
+                .with_context(|| format!("cannot write {}", path.display()))?;
+        }
     }
     Ok(())
+}
+
+/// The tip at `t` extrapolated at `order` from `fine` and the level at half its N, `coarse`.
+fn extrapolated(fine: &Trajectory, coarse: &Trajectory, order: f64, t: f64) -> Point {
+    fine.at(t) + (fine.at(t) - coarse.at(t)) / (2f64.powf(order) - 1.0)
+}
+
+/// The own error at `t` of the extrapolation from `fine` and `coarse`: its change from the
+/// extrapolation one level coarser, from `coarse` and `half`.
+fn own_error_at(
+    fine: &Trajectory,
+    coarse: &Trajectory,
+    half: &Trajectory,
+    order: f64,
+    t: f64,
+) -> f64 {
+    (extrapolated(fine, coarse, order, t) - extrapolated(coarse, half, order, t)).norm()
 }
