@@ -13,6 +13,11 @@
 //! each release's reference from its three finest levels is written as
 //! `release-ANGLE.csv`: its tip and own error at every compared instant, as the tolerance
 //! check's `references.csv` gives them).
+//!
+//! `RAYON_NUM_THREADS=1 … -- ANGLE 1600 12800 3000 1.5 3
+//! assets/reference-convergence/graded-references` made the committed graded references at
+//! N = 6 400 (3 000 instants a unit hold a run's every frame and every 1/1000; about 1 200 s
+//! of CPU a release; `docs/measurements.md`).
 
 use anyhow::Context as _;
 use rayon::prelude::*;

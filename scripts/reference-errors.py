@@ -1,0 +1,46 @@
+#!/usr/bin/env python3
+"""A reference's own error, read off the CSV that gives it (`references.csv` of
+`rope study --tolerance-check`, or the `release-ANGLE.csv` files of
+`examples/reference_convergence` with a folder): for each scene, the largest own error over
+every row, over the instants on a 1/1000 grid, and over the frames a run logs (60 a time
+unit), each with the time where it is largest, or "not given" where the file does not give
+every instant of that grid (a file at 1000 a unit gives only every third frame). The figures in docs/measurements.md on the
+graded references come from it.
+
+    python3 scripts/reference-errors.py assets/reference-convergence/graded-references/*.csv
+"""
+import collections
+import csv
+import sys
+
+# The instants a time unit of each column; an instant is on a grid when t × rate is a whole
+# number to within this (the CSVs give t to 16 digits).
+GRIDS, ON_GRID = (("every row", None), ("every 1/1000", 1000), ("frames (60 a unit)", 60)), 1e-6
+
+if len(sys.argv) < 2:
+    sys.exit(__doc__)
+worst = collections.defaultdict(lambda: {name: (0.0, 0.0) for name, _ in GRIDS})
+found = collections.defaultdict(collections.Counter)
+last = collections.defaultdict(float)
+rows = collections.Counter()
+for path in sys.argv[1:]:
+    for r in csv.DictReader(open(path, encoding="utf-8")):
+        scene, t, own = r["scene"], float(r["t"]), float(r["own_error"])
+        rows[scene] += 1
+        last[scene] = max(last[scene], t)
+        for name, rate in GRIDS:
+            if rate is None or abs(t * rate - round(t * rate)) < ON_GRID:
+                found[scene][name] += 1
+                if own > worst[scene][name][0]:
+                    worst[scene][name] = (own, t)
+
+print("| scene | rows | " + " | ".join(f"own error at {name} (at t)" for name, _ in GRIDS) + " |")
+print("|---|---|" + "---|" * len(GRIDS))
+for scene, by_grid in worst.items():
+    def cell(name, rate):
+        whole = rate is None or found[scene][name] >= round(last[scene] * rate) + 1
+        own, t = by_grid[name]
+        return f"{own:.1e} ({t:.4f})" if whole else "not given"
+
+    cells = " | ".join(cell(name, rate) for name, rate in GRIDS)
+    print(f"| {scene} | {rows[scene]} | {cells} |")
