@@ -22,8 +22,8 @@
 use anyhow::Context as _;
 use rayon::prelude::*;
 use rope::model::{Point, Scene};
+use rope::study::tip_reference::{extrapolate, write_reference_csv};
 use rope::study::trajectory::{Trajectory, frame_times};
-use std::io::Write as _;
 use std::time::Instant;
 
 /// Frames per time unit at which the levels are compared unless told: fine enough to judge
@@ -98,18 +98,12 @@ fn main() -> anyhow::Result<()> {
             (out, finest_order, runs.as_slice())
         {
             let path = std::path::Path::new(out).join(format!("release-{angle_deg}.csv"));
-            let mut file = std::io::BufWriter::new(
-                std::fs::File::create(&path)
-                    .with_context(|| format!("cannot create {}", path.display()))?,
-            );
-            // The columns and precision of the tolerance check's `references.csv`.
-            writeln!(file, "scene,t,tip_x,tip_y,own_error")?;
-            for &t in &frames {
+            let rows = frames.iter().map(|&t| {
                 let tip = extrapolated(&fine.0, &coarse.0, order, t);
                 let own = own_error_at(&fine.0, &coarse.0, &half.0, order, t);
-                writeln!(file, "{scene},{t},{:.9},{:.9},{own:.1e}", tip.x, tip.y)?;
-            }
-            file.flush()
+                (scene, t, tip, own)
+            });
+            write_reference_csv(&path, rows)
                 .with_context(|| format!("cannot write {}", path.display()))?;
         }
     }
@@ -118,7 +112,7 @@ fn main() -> anyhow::Result<()> {
 
 /// The tip at `t` extrapolated at `order` from `fine` and the level at half its N, `coarse`.
 fn extrapolated(fine: &Trajectory, coarse: &Trajectory, order: f64, t: f64) -> Point {
-    fine.at(t) + (fine.at(t) - coarse.at(t)) / (2f64.powf(order) - 1.0)
+    extrapolate(fine.at(t), coarse.at(t), order)
 }
 
 /// The own error at `t` of the extrapolation from `fine` and `coarse`: its change from the

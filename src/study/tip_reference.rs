@@ -169,8 +169,7 @@ impl TipReference {
 
     /// The tip at `t` extrapolated from `fine` and the run at half its N, `coarse`.
     fn extrapolated(&self, fine: &Trajectory, coarse: &Trajectory, t: f64) -> Point {
-        let (f, c) = (fine.at(t), coarse.at(t));
-        f + (f - c) / (2f64.powf(self.order) - 1.0)
+        extrapolate(fine.at(t), coarse.at(t), self.order)
     }
 
     /// The reference's own error at `t`: how far its tip moves when it is made from N and 2N
@@ -191,6 +190,12 @@ impl TipReference {
     }
 }
 
+/// The tip extrapolated in N (Richardson) at `order` from a run's tip, `fine`, and the tip of
+/// the run at half its N, `coarse`.
+pub fn extrapolate(fine: Point, coarse: Point, order: f64) -> Point {
+    fine + (fine - coarse) / (2f64.powf(order) - 1.0)
+}
+
 /// Instants a time unit at which `references.csv` gives each reference's tip and own error.
 pub const REFERENCE_RATE: f64 = 1000.0;
 
@@ -202,16 +207,31 @@ pub fn write_references(
     references: &[TipReference],
     duration: f64,
 ) -> std::io::Result<()> {
+    let rows = references.iter().flat_map(|reference| {
+        frame_times(duration, REFERENCE_RATE).into_iter().map(|t| {
+            (
+                reference.scene,
+                t,
+                reference.at(t),
+                reference.own_error_at(t),
+            )
+        })
+    });
+    write_reference_csv(path, rows)
+}
+
+/// A CSV of reference tips in the columns of `references.csv`: a row per (scene, t, tip, own
+/// error), the tip to 1e-9, for any reference written out (the check's, or one measured
+/// beside it by `examples/reference_convergence`).
+pub fn write_reference_csv(
+    path: &std::path::Path,
+    rows: impl IntoIterator<Item = (Scene, f64, Point, f64)>,
+) -> std::io::Result<()> {
     use std::io::Write as _;
     let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
     writeln!(out, "scene,t,tip_x,tip_y,own_error")?;
-    for reference in references {
-        let scene = reference.scene;
-        for t in frame_times(duration, REFERENCE_RATE) {
-            let tip = reference.at(t);
-            let own = reference.own_error_at(t);
-            writeln!(out, "{scene},{t},{:.9},{:.9},{own:.1e}", tip.x, tip.y)?;
-        }
+    for (scene, t, tip, own) in rows {
+        writeln!(out, "{scene},{t},{:.9},{:.9},{own:.1e}", tip.x, tip.y)?;
     }
     out.flush()
 }
