@@ -24,21 +24,16 @@ if len(sys.argv) < 2:
     sys.exit(__doc__)
 worst = collections.defaultdict(lambda: {name: (0.0, 0.0) for name, _ in GRIDS})
 found = collections.defaultdict(collections.Counter)
-last = collections.defaultdict(float)
-rows = collections.Counter()
 tips = collections.defaultdict(list)
 for path in sys.argv[1:]:
     for r in csv.DictReader(open(path, encoding="utf-8")):
         scene, t, own = r["scene"], float(r["t"]), float(r["own_error"])
-        rows[scene] += 1
         tips[scene].append((t, float(r["tip_x"]), float(r["tip_y"])))
-        last[scene] = max(last[scene], t)
         for name, rate in GRIDS:
             if rate is None or abs(t * rate - round(t * rate)) < ON_GRID:
                 found[scene][name] += 1
                 if own > worst[scene][name][0]:
                     worst[scene][name] = (own, t)
-
 
 
 def cubic_miss(samples):
@@ -56,11 +51,13 @@ head = " | ".join(f"own error at {name} (at t)" for name, _ in GRIDS)
 print(f"| scene | rows | {head} | cubic through every other row misses by (at t) |")
 print("|---|---|" + "---|" * (len(GRIDS) + 1))
 for scene, by_grid in worst.items():
+    last = max(t for t, _, _ in tips[scene])
+
     def cell(name, rate):
-        whole = rate is None or found[scene][name] >= round(last[scene] * rate) + 1
+        whole = rate is None or found[scene][name] >= round(last * rate) + 1
         own, t = by_grid[name]
         return f"{own:.1e} ({t:.4f})" if whole else "not given"
 
     cells = " | ".join(cell(name, rate) for name, rate in GRIDS)
     miss, at = cubic_miss(tips[scene])
-    print(f"| {scene} | {rows[scene]} | {cells} | {miss:.1e} ({at:.4f}) |")
+    print(f"| {scene} | {len(tips[scene])} | {cells} | {miss:.1e} ({at:.4f}) |")
