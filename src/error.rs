@@ -177,6 +177,8 @@ pub enum ConfigError {
     },
     #[error("reference = {path}: {reason}; write one with `rope study --reference-only --out DIR`")]
     ReferenceUnreadable { path: String, reason: String },
+    #[error("references = {path}: {reason}")]
+    ReferencesUnreadable { path: String, reason: String },
     #[error(
         "{flag}: the {scene} scene does not take --{flag} (it would be ignored); the release scene takes --angle, the mode scene --mode-number and --amplitude, the fold scene --gap, the shake scene --amplitude, --frequency or --sweep, and --from (choose with --scene)"
     )]

@@ -2,25 +2,29 @@
 //! in two scenes, held against a converged reference at every frame.
 
 use rope::Scene;
+use rope::study::read_reference::{CheckReference, read_all};
+use rope::study::tip_reference::{ConvergedTip, LOG_RATE, write_references};
 use rope::study::tolerance_check::{CheckSpec, REFERENCE_MARGIN, check};
 
 #[test]
 fn the_quick_tolerance_check_holds_eps_against_a_converged_reference_in_each_scene() {
     let spec = CheckSpec::quick();
-    let checked = check(&spec, || {}).unwrap();
+    let checked = check(&spec, &[], || {}).unwrap();
     let cells = &checked.cells;
     let eps = spec.tolerances[0];
     // The reference must be fine enough to judge EPS: the check says so when it is not.
     for r in &checked.references {
         eprintln!(
-            "reference from the {}: order {:.2}, own error {:.1e}",
-            r.scene, r.order, r.own_error
+            "reference from the {}: {:?}, own error {:.1e}",
+            r.scene(),
+            r.made_of(),
+            r.own_error()
         );
         assert!(
-            r.own_error <= REFERENCE_MARGIN * eps,
+            r.own_error() <= REFERENCE_MARGIN * eps,
             "{}: own error {:.1e}",
-            r.scene,
-            r.own_error
+            r.scene(),
+            r.own_error()
         );
     }
     // Each reference starts where its scene does (y down): a release's tip at (cos θ, sin θ),
@@ -28,8 +32,8 @@ fn the_quick_tolerance_check_holds_eps_against_a_converged_reference_in_each_sce
     // straight down.
     assert_eq!(checked.references.len(), spec.scenes.len());
     for (scene, tip) in spec.scenes.iter().zip(&checked.references) {
-        assert_eq!(tip.scene, *scene);
-        let start = tip.at(0.0);
+        assert_eq!(tip.scene(), *scene);
+        let start = tip.tip_at(0.0);
         if let Scene::Release { angle_deg } = *scene {
             let angle = angle_deg.to_radians();
             assert!((start.x - angle.cos()).abs() < 1e-12 && (start.y - angle.sin()).abs() < 1e-12);
@@ -60,7 +64,7 @@ fn the_quick_tolerance_check_holds_eps_against_a_converged_reference_in_each_sce
 }
 
 /// The committed `assets/tolerance-check/references.csv` (written by the full check): every
-/// scene of the check, its tip every 1/1000 to t = 3, held to what the physics of the string
+/// scene of the check, its tip every 1/3000 to t = 3 (every frame and every 1/1000), held to what the physics of the string
 /// says, whatever the extrapolation did.
 #[test]
 fn the_committed_references_obey_the_physics_of_the_string() {
@@ -82,12 +86,13 @@ fn the_committed_references_obey_the_physics_of_the_string() {
         })
         .collect();
     let spec = CheckSpec::default();
-    let per_scene = 3001;
+    let rate = rope::study::tip_reference::REFERENCE_ROWS_RATE;
+    let per_scene = 1 + (spec.duration * rate) as usize;
     assert_eq!(rows.len(), spec.scenes.len() * per_scene);
     for (scene, rows) in spec.scenes.iter().zip(rows.chunks(per_scene)) {
         for (j, (name, [t, x, y, own])) in rows.iter().enumerate() {
             assert_eq!(*name, scene.to_string());
-            assert!((t - j as f64 / 1000.0).abs() < 1e-12, "{scene}: t = {t}");
+            assert!((t - j as f64 / rate).abs() < 1e-12, "{scene}: t = {t}");
             assert!(*own >= 0.0);
             // Inextensible: the tip is never farther from the support than the string is long
             // (an extrapolated point may stray outside by its own error; the file rounds to
@@ -134,7 +139,7 @@ fn a_grid_that_holds_nothing_goes_on_past_its_largest_n_until_a_run_holds() {
         ..CheckSpec::quick()
     };
     let ticks = AtomicUsize::new(0);
-    let checked = check(&spec, || {
+    let checked = check(&spec, &[], || {
         ticks.fetch_add(1, Ordering::Relaxed);
     })
     .unwrap();
@@ -149,4 +154,48 @@ fn a_grid_that_holds_nothing_goes_on_past_its_largest_n_until_a_run_holds() {
         .flat_map(|&n| startable(&scene, 3.0).map(move |m| grid_steps(m, n).len()))
         .sum();
     assert_eq!(ticks.load(Ordering::Relaxed), 1 + runs + 1);
+}
+
+#[test]
+fn a_check_that_reads_its_references_back_judges_every_run_as_the_one_that_computed_them() {
+    let spec = CheckSpec {
+        scenes: vec![Scene::Mode {
+            number: 1,
+            amplitude: 0.05,
+        }],
+        ..CheckSpec::quick()
+    };
+    let computed = check(&spec, &[], || {}).unwrap();
+    let path = std::env::temp_dir().join(format!("rope-check-refs-{}.csv", std::process::id()));
+    write_references(&path, &computed.references, spec.duration).unwrap();
+    let read = read_all(std::slice::from_ref(&path), &spec.scenes, spec.duration);
+    std::fs::remove_file(&path).unwrap();
+    let read = read.unwrap();
+    let again = check(&spec, &read, || {}).unwrap();
+    let (before, after) = (&computed.references[0], &again.references[0]);
+    assert!(matches!(before, CheckReference::Computed(_)));
+    assert!(
+        matches!(after, CheckReference::Read(_)),
+        "{:?}",
+        after.made_of()
+    );
+    // The file keeps the tip to 1e-9 and the own error to two digits, at every frame.
+    for k in 0..=(spec.duration * LOG_RATE) as usize {
+        let t = k as f64 / LOG_RATE;
+        assert!(
+            (before.tip_at(t) - after.tip_at(t)).norm() < 1e-9,
+            "t = {t}"
+        );
+    }
+    assert!((before.own_error() - after.own_error()).abs() <= 0.05 * before.own_error());
+    // The same runs, measured against either, err alike.
+    let (one, two) = (&computed.cells[0], &again.cells[0]);
+    let (a, b) = (one.chosen.unwrap(), two.chosen.unwrap());
+    assert_eq!((a.method, a.segments, a.dt), (b.method, b.segments, b.dt));
+    assert!(
+        (a.worst - b.worst).abs() < 2e-9,
+        "{} against {}",
+        a.worst,
+        b.worst
+    );
 }

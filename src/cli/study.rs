@@ -78,11 +78,19 @@ pub struct StudyArgs {
     /// the chosen run's largest tip error over the frames to t = 3, and its CPU (pilots
     /// included) beside the cheapest run of a grid (N = 16 … 1131, on to 3200 where nothing in
     /// it holds) that holds EPS; writes tolerance_check.md, references.csv (each
-    /// reference's tip every 1/1000) and a chart; about an hour and a half on 2 cores.
+    /// reference's tip every 1/3000) and a chart; about an hour and a half on 2 cores, some
+    /// 20 minutes with every reference read (--references).
     /// `quick`: the release from 30° and mode 1 at 1e-2 only (what CI runs); `unseen`: the
     /// releases from 37° and 52° alone, which no atlas measured (about half an hour).
     #[arg(long, value_enum, value_name = "SIZE", num_args = 0..=1, default_missing_value = "full", conflicts_with_all = ["long_run", "blow_up", "estimate_check"])]
     pub tolerance_check: Option<CheckSize>,
+
+    /// With --tolerance-check: references to read instead of computing them again, each a
+    /// references.csv as the check writes it (a row at every 1/3000 of a time unit), or a
+    /// folder of such files. A scene's reference is read where one of them can judge the
+    /// check's smallest EPS (the least own error at the frames among those), else computed.
+    #[arg(long, value_name = "PATH", num_args = 1.., requires = "tolerance_check")]
+    pub references: Vec<PathBuf>,
 
     /// Run only shard I of N of the grid (the cells whose place in the grid's fixed order is
     /// I modulo N) and write a partial study.csv and its manifest shard.json into --out, for

@@ -281,12 +281,49 @@ fn tolerance_check(
         .chain(&spec.grid_beyond)
         .flat_map(|&n| MethodKind::ALL.map(|m| grid_steps(m, n).len()))
         .sum();
+    let read =
+        crate::study::read_reference::read_all(&args.references, &spec.scenes, spec.duration)?;
+    let (mut read_for, mut too_coarse) = (Vec::new(), Vec::new());
+    for scene in &spec.scenes {
+        let best = read
+            .iter()
+            .filter(|r| r.scene == *scene)
+            .min_by(|a, b| a.own_error.total_cmp(&b.own_error));
+        match (
+            crate::study::tolerance_check::usable(&spec, &read, scene),
+            best,
+        ) {
+            (Some(r), _) => read_for.push(format!("{scene} (from {})", r.source.display())),
+            (None, Some(r)) => too_coarse.push(format!(
+                "{scene} ({} errs by {:.1e} at the frames)",
+                r.source.display(),
+                r.own_error
+            )),
+            (None, None) => {}
+        }
+    }
+    if !args.references.is_empty() {
+        let list = |v: &[String]| match v.is_empty() {
+            true => "none".to_owned(),
+            false => v.join(", "),
+        };
+        say(
+            session,
+            format!(
+                "rope study: references read: {}; read but computed again, too coarse to judge {:.0e}: {}",
+                list(&read_for),
+                spec.smallest_tolerance(),
+                list(&too_coarse)
+            ),
+        );
+    }
     let runs = spec.scenes.len() * (1 + grid_runs + spec.tolerances.len());
     say(
         session,
         format!(
-            "rope study: {} scenes, each a reference at N = {} (with N/2 and 2N; N doubled up to {} until it is fine enough, and on up to {} where it can get there), a grid of up to {} runs and a choice per EPS in {:?}, to t = {}",
+            "rope study: {} scenes, each a reference ({} read) at N = {} (with N/2 and 2N; N doubled up to {} until it is fine enough, and on up to {} where it can get there), a grid of up to {} runs and a choice per EPS in {:?}, to t = {}",
             spec.scenes.len(),
+            read_for.len(),
             spec.reference_segments,
             spec.reference_segments_max,
             spec.reference_segments_reach,
@@ -297,7 +334,7 @@ fn tolerance_check(
     );
     let counter = Counter::new(runs as u64, "rope study", "references, runs and choices");
     let markdown =
-        crate::study::execute_tolerance_check(&spec, &args.out, &session.command, || {
+        crate::study::execute_tolerance_check(&spec, &read, &args.out, &session.command, || {
             counter.inc()
         })?;
     counter.finish();

@@ -17,7 +17,8 @@
 //!   and against the cheapest run of a grid; [`tolerance_chart`]: its chart;
 //! * [`tip_reference`]: the converged tip those checks and the release atlas judge runs
 //!   against, from runs at [`trajectory`]; [`run_cache`]: those runs kept on disk
-//!   (`ROPE_RUN_CACHE`), to be read instead of run again.
+//!   (`ROPE_RUN_CACHE`), to be read instead of run again; [`read_reference`]: such a tip
+//!   read back from a references file (`--references`), instead of computed again.
 
 pub mod atlas_chart;
 pub mod axes;
@@ -29,6 +30,7 @@ pub mod findings;
 pub mod grid;
 pub mod long_charts;
 pub mod long_run;
+pub mod read_reference;
 pub mod record;
 pub mod reference;
 pub mod report;
@@ -329,19 +331,20 @@ pub fn execute_estimate_check(
     Ok(markdown)
 }
 
-/// What `--tolerance` chooses in each scene of `spec`, against the truth and the grid's
-/// cheapest run; writes `tolerance_check.md`, the references' tips (`references.csv`) and
+/// What `--tolerance` chooses in each scene of `spec` (its references read from `read` where
+/// they can judge it), against the truth and the grid's cheapest run; writes `tolerance_check.md`, the references' tips (`references.csv`) and
 /// the chart `tolerance_check.svg`/`.png` into `out`. Returns the Markdown. `tick` is called
 /// once per reference, run and choice.
 pub fn execute_tolerance_check(
     spec: &tolerance_check::CheckSpec,
+    read: &[read_reference::ReadReference],
     out: &Path,
     command: &str,
     tick: impl Fn() + Sync,
 ) -> anyhow::Result<String> {
     create_dir(out)?;
     use anyhow::Context as _;
-    let checked = tolerance_check::check(spec, tick)?;
+    let checked = tolerance_check::check(spec, read, tick)?;
     let csv = out.join("references.csv");
     tip_reference::write_references(&csv, &checked.references, spec.duration)
         .with_context(|| format!("writing {}", csv.display()))?;

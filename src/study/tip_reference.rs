@@ -1,7 +1,9 @@
 //! The converged tip of a scene that `rope study --tolerance-check` and the release atlas
 //! judge runs against: a method's runs at N/2, N and 2N, extrapolated in N at the order they
 //! show, with its own error measured at the frames and between them, and written out for
-//! anyone to hold another solver against (`references.csv`).
+//! anyone to hold another solver against (`references.csv`); and [`ConvergedTip`], what a
+//! run is measured against, computed here or read back from such a file
+//! ([`read_reference`](super::read_reference)).
 
 use super::trajectory::{Trajectory, frame_times};
 use crate::methods::MethodKind;
@@ -11,6 +13,29 @@ use rayon::prelude::*;
 /// Frames per time unit at which a run's tip is compared with the reference: a run's frames,
 /// where a reference's own error is first measured.
 pub const LOG_RATE: f64 = 60.0;
+
+/// A scene's converged tip, as a run is measured against it: at any instant, with the own
+/// error the reference has there.
+pub trait ConvergedTip {
+    /// The scene it is the converged tip of.
+    fn scene(&self) -> Scene;
+
+    /// The tip at time `t`.
+    fn tip_at(&self, t: f64) -> Point;
+
+    /// How far [`ConvergedTip::tip_at`] may be from the truth at `t`, as measured.
+    fn own_error_at(&self, t: f64) -> f64;
+
+    /// The largest own error at `rate` instants a time unit to `duration`: at the frames
+    /// ([`LOG_RATE`]) what judges a run's frames; finer, it also sees between them (a whip's
+    /// peak is brief).
+    fn own_error_over(&self, duration: f64, rate: f64) -> f64 {
+        frame_times(duration, rate)
+            .into_iter()
+            .map(|t| self.own_error_at(t))
+            .fold(0.0, f64::max)
+    }
+}
 
 /// The converged tip of one scene: the reference method at N and 2N, extrapolated in N at the
 /// order that the runs at N/2, N and 2N show.
@@ -171,22 +196,21 @@ impl TipReference {
     fn extrapolated(&self, fine: &Trajectory, coarse: &Trajectory, t: f64) -> Point {
         extrapolate(fine.at(t), coarse.at(t), self.order)
     }
+}
 
-    /// The reference's own error at `t`: how far its tip moves when it is made from N and 2N
-    /// rather than from N/2 and N.
-    pub fn own_error_at(&self, t: f64) -> f64 {
-        let coarser = self.extrapolated(&self.coarse, &self.half, t);
-        (self.at(t) - coarser).norm()
+impl ConvergedTip for TipReference {
+    fn scene(&self) -> Scene {
+        self.scene
     }
 
-    /// The largest own error at `rate` instants a time unit to `duration`: at the frames
-    /// ([`LOG_RATE`]) it is [`TipReference::own_error`]; finer, it also sees between them
-    /// (a whip's peak is brief).
-    pub fn own_error_over(&self, duration: f64, rate: f64) -> f64 {
-        frame_times(duration, rate)
-            .into_iter()
-            .map(|t| self.own_error_at(t))
-            .fold(0.0, f64::max)
+    fn tip_at(&self, t: f64) -> Point {
+        self.at(t)
+    }
+
+    /// How far its tip moves when it is made from N and 2N rather than from N/2 and N.
+    fn own_error_at(&self, t: f64) -> f64 {
+        let coarser = self.extrapolated(&self.coarse, &self.half, t);
+        (self.at(t) - coarser).norm()
     }
 }
 
@@ -196,26 +220,34 @@ pub fn extrapolate(fine: Point, coarse: Point, order: f64) -> Point {
     fine + (fine - coarse) / (2f64.powf(order) - 1.0)
 }
 
-/// Instants a time unit at which `references.csv` gives each reference's tip and own error.
+/// Instants a time unit at which a reference's own error is also measured between the frames.
 pub const REFERENCE_RATE: f64 = 1000.0;
 
-/// `references.csv`: each reference's tip and its own error ([`TipReference::own_error_at`])
-/// every 1/[`REFERENCE_RATE`] of a time unit to `duration`, for anyone to hold another solver
-/// against.
+/// Rows a time unit of `references.csv`: every frame ([`LOG_RATE`]) and every
+/// 1/[`REFERENCE_RATE`] is a row, so that a reference read back is read at its rows and never
+/// between them (near the whip a cubic through every other row misses the row between by up
+/// to 1e-3 at 1 000 rows a unit).
+pub const REFERENCE_ROWS_RATE: f64 = 3000.0;
+
+/// `references.csv`: each reference's tip and its own error ([`ConvergedTip::own_error_at`])
+/// every 1/[`REFERENCE_ROWS_RATE`] of a time unit to `duration`, for anyone to hold another
+/// solver against, and for `rope study --tolerance-check --references` to read back.
 pub fn write_references(
     path: &std::path::Path,
-    references: &[TipReference],
+    references: &[impl ConvergedTip],
     duration: f64,
 ) -> std::io::Result<()> {
     let rows = references.iter().flat_map(|reference| {
-        frame_times(duration, REFERENCE_RATE).into_iter().map(|t| {
-            (
-                reference.scene,
-                t,
-                reference.at(t),
-                reference.own_error_at(t),
-            )
-        })
+        frame_times(duration, REFERENCE_ROWS_RATE)
+            .into_iter()
+            .map(|t| {
+                (
+                    reference.scene(),
+                    t,
+                    reference.tip_at(t),
+                    reference.own_error_at(t),
+                )
+            })
     });
     write_reference_csv(path, rows)
 }
@@ -333,7 +365,7 @@ mod tests {
     }
 
     #[test]
-    fn the_references_file_gives_each_tip_and_own_error_every_thousandth() {
+    fn the_references_file_gives_each_tip_and_own_error_at_every_frame_and_thousandth() {
         let [half, coarse, fine] = runs_around(|t| Point::new(t.cos(), t.sin()));
         let reference = TipReference::of(METHOD, SCENE, half, coarse, fine, 200, 3.0);
         let path = std::env::temp_dir().join(format!("rope-refs-{}.csv", std::process::id()));
@@ -342,12 +374,15 @@ mod tests {
         std::fs::remove_file(&path).unwrap();
         let lines: Vec<&str> = text.lines().collect();
         assert_eq!(lines[0], "scene,t,tip_x,tip_y,own_error");
-        assert_eq!(lines.len(), 1 + 3001);
-        let fields: Vec<&str> = lines[1235].split(',').collect();
-        assert_eq!(fields[0], SCENE.to_string());
-        let t: f64 = fields[1].parse().unwrap();
-        assert!((t - 1.234).abs() < 1e-12);
-        let x: f64 = fields[2].parse().unwrap();
-        assert!((x - t.cos()).abs() < 1e-8, "{x}");
+        assert_eq!(lines.len(), 1 + 9001);
+        // Every 1/1 000 (t = 1.234) and every frame (t = 1.25 = 75/60) is a row.
+        for (row, at) in [(3702, 1.234), (3750, 1.25)] {
+            let fields: Vec<&str> = lines[1 + row].split(',').collect();
+            assert_eq!(fields[0], SCENE.to_string());
+            let t: f64 = fields[1].parse().unwrap();
+            assert!((t - at).abs() < 1e-12, "{t}");
+            let x: f64 = fields[2].parse().unwrap();
+            assert!((x - t.cos()).abs() < 1e-8, "{x}");
+        }
     }
 }

@@ -2,10 +2,12 @@
 //! and EPS, the run `rope run --tolerance EPS` would make (its pilots, then the chosen method,
 //! N and k with its shadow) is measured against a converged reference at every frame, and its
 //! CPU, pilots included, set beside the cheapest run of a (method, N, k) grid, each method at
-//! its default step and at its tolerance step, that also holds EPS.
+//! its default step and at its tolerance step, that also holds EPS. A scene's reference is
+//! computed, or read back from a references file where one can judge the check's smallest EPS.
 
+use super::read_reference::{CheckReference, ReadReference};
 pub use super::tip_reference::LOG_RATE;
-use super::tip_reference::{REFERENCE_RATE, TipReference};
+use super::tip_reference::{ConvergedTip, REFERENCE_RATE, REFERENCE_ROWS_RATE, TipReference};
 use crate::methods::MethodKind;
 use crate::model::{Point, Scene};
 use crate::plan::atlas::ATLAS_ANGLES;
@@ -180,7 +182,7 @@ pub fn measure(
     dt: f64,
     duration: f64,
     shadowed: bool,
-    reference: &TipReference,
+    reference: &impl ConvergedTip,
 ) -> Option<Measured> {
     let options = Options {
         duration,
@@ -188,7 +190,7 @@ pub fn measure(
         frame_grid: None,
     };
     let mut worst: f64 = 0.0;
-    let mut on_frame = |tip: Point, t: f64| worst = worst.max((tip - reference.at(t)).norm());
+    let mut on_frame = |tip: Point, t: f64| worst = worst.max((tip - reference.tip_at(t)).norm());
     let started = Instant::now();
     let stopped = if shadowed {
         let run = simulate::run_shadowed(method, scene, segments, dt, &options, |f| {
@@ -229,24 +231,54 @@ pub struct Checked {
     /// A cell per scene and tolerance.
     pub cells: Vec<Cell>,
     /// Each scene's reference, as [`CheckSpec::scenes`] lists them.
-    pub references: Vec<TipReference>,
+    pub references: Vec<CheckReference>,
 }
 
-/// The whole check: a reference per scene (the scenes' in parallel), then each scene's grid
-/// and each tolerance's choice one run at a time, so that their wall seconds are one
-/// thread's. `tick` is called once per reference and once per run.
-pub fn check(spec: &CheckSpec, tick: impl Fn() + Sync) -> anyhow::Result<Checked> {
+impl CheckSpec {
+    /// The smallest EPS the check asks.
+    pub fn smallest_tolerance(&self) -> f64 {
+        self.tolerances
+            .iter()
+            .copied()
+            .fold(f64::INFINITY, f64::min)
+    }
+}
+
+/// The reference of `read` the check takes for `scene` instead of computing one: of those that
+/// can judge the smallest EPS (own error at the frames at most [`REFERENCE_MARGIN`] × it), the
+/// one whose own error at the frames is least.
+pub fn usable<'a>(
+    spec: &CheckSpec,
+    read: &'a [ReadReference],
+    scene: &Scene,
+) -> Option<&'a ReadReference> {
+    read.iter()
+        .filter(|r| {
+            r.scene == *scene && r.own_error <= REFERENCE_MARGIN * spec.smallest_tolerance()
+        })
+        .min_by(|a, b| a.own_error.total_cmp(&b.own_error))
+}
+
+/// The whole check: a reference per scene (read from `read` where [`usable`], else computed,
+/// the scenes' in parallel), then each scene's grid and each tolerance's choice one run at a
+/// time, so that their wall seconds are one thread's. `tick` is called once per reference and
+/// once per run.
+pub fn check(
+    spec: &CheckSpec,
+    read: &[ReadReference],
+    tick: impl Fn() + Sync,
+) -> anyhow::Result<Checked> {
     let mut cells = Vec::new();
-    let smallest = spec
-        .tolerances
-        .iter()
-        .copied()
-        .fold(f64::INFINITY, f64::min);
+    let smallest = spec.smallest_tolerance();
     // The references first, the scenes' in parallel: no CPU is measured while they run.
     let references = spec
         .scenes
         .par_iter()
         .map(|scene| {
+            if let Some(read) = usable(spec, read, scene) {
+                tick();
+                return Ok(CheckReference::Read(read.clone()));
+            }
             let target = REFERENCE_MARGIN * smallest;
             let reference = TipReference::refined_by(
                 reference_method(scene, spec.duration),
@@ -256,13 +288,13 @@ pub fn check(spec: &CheckSpec, tick: impl Fn() + Sync) -> anyhow::Result<Checked
                 target,
                 spec.duration,
             )?
-            .refined_where_reachable(target, spec.reference_segments_reach);
+            .refined_where_reachable(target, spec.reference_segments_reach)?;
             tick();
-            reference
+            Ok(CheckReference::Computed(reference))
         })
         .collect::<anyhow::Result<Vec<_>>>()?;
     for reference in &references {
-        let scene = &reference.scene;
+        let scene = &reference.scene();
         // `method`'s runs at N = `n`, one at each of its grid steps (those that finished).
         let runs_at = |method: MethodKind, n: usize| -> Vec<Measured> {
             grid_steps(method, n)
@@ -292,7 +324,7 @@ pub fn check(spec: &CheckSpec, tick: impl Fn() + Sync) -> anyhow::Result<Checked
             .tolerances
             .iter()
             .copied()
-            .filter(|&eps| reference.own_error <= REFERENCE_MARGIN * eps)
+            .filter(|&eps| reference.own_error() <= REFERENCE_MARGIN * eps)
             .fold(f64::INFINITY, f64::min);
         for &n in &spec.grid_beyond {
             if grid.iter().any(|r| r.worst <= judged) {
@@ -316,10 +348,10 @@ pub fn check(spec: &CheckSpec, tick: impl Fn() + Sync) -> anyhow::Result<Checked
                     .min_by(|a, b| a.seconds.total_cmp(&b.seconds))
                     .copied(),
             };
-            if reference.own_error > REFERENCE_MARGIN * eps {
+            if reference.own_error() > REFERENCE_MARGIN * eps {
                 cell.skipped = Some(format!(
                     "the reference's own error {:.1e} is above {REFERENCE_MARGIN} × EPS",
-                    reference.own_error
+                    reference.own_error()
                 ));
                 cells.push(cell);
                 continue;
@@ -358,12 +390,15 @@ pub fn markdown(spec: &CheckSpec, checked: &Checked, command: &str) -> String {
          reference can judge, on at N = {:?} up to the first N where one does) whose largest \
          error also holds EPS. A \
          tolerance is checked only where the reference's own error at the frames is at most \
-         {REFERENCE_MARGIN} × EPS.\n\n## References\n\n\
+         {REFERENCE_MARGIN} × EPS. Where `--references` gave a scene's reference whose own \
+         error at the frames is at most {REFERENCE_MARGIN} × the smallest EPS, it is read \
+         instead of computed, at its rows (every frame is one): the method column names its \
+         file.\n\n## References\n\n\
          Each reference's own error is measured: how far its tip moves when it is extrapolated \
          from N and 2N rather than from N/2 and N, at the frames the choices are judged at, and \
          at every 1/{REFERENCE_RATE} of a time unit, which also sees between them (a whip's \
          peak is brief). `references.csv` gives each reference's tip and own error at every \
-         1/{REFERENCE_RATE}.\n\n\
+         1/{REFERENCE_ROWS_RATE} (every frame and every 1/{REFERENCE_RATE}).\n\n\
          | scene | method | N (runs at N/2, N, 2N) | observed order | own error at the frames | at every 1/{REFERENCE_RATE} |\n|---|---|---|---|---|---|\n",
         spec.duration,
         MethodKind::REFERENCE,
@@ -374,13 +409,11 @@ pub fn markdown(spec: &CheckSpec, checked: &Checked, command: &str) -> String {
         spec.grid_beyond
     );
     for r in &checked.references {
+        let (method, segments, order) = r.made_of();
         text += &format!(
-            "| {} | {} | {} | {:.2} | {:.1e} | {:.1e} |\n",
-            r.scene,
-            r.method,
-            r.segments,
-            r.order,
-            r.own_error,
+            "| {} | {method} | {segments} | {order} | {:.1e} | {:.1e} |\n",
+            r.scene(),
+            r.own_error(),
             r.own_error_over(spec.duration, REFERENCE_RATE)
         );
     }
