@@ -306,15 +306,25 @@ pub fn check(
                 })
                 .collect()
         };
-        // Each method up the grid until it holds the smallest EPS: a finer run could only
-        // cost more.
+        // Each method up the grid until a run holds the smallest EPS and none at that N costs
+        // less than the cheapest that holds: a finer run costs more than every run at a
+        // coarser N, but at its default step it may cost less than a coarser one at its
+        // (finer) tolerance step.
         let mut grid: Vec<Measured> = Vec::new();
         for method in tolerance::startable(scene, spec.duration) {
+            let mut cheapest_holding = f64::INFINITY;
             for &n in &spec.grid {
                 let runs = runs_at(method, n);
-                let held = runs.iter().any(|r| r.worst <= smallest);
+                let seconds = |held: bool| {
+                    runs.iter()
+                        .filter(|r| !held || r.worst <= smallest)
+                        .map(|r| r.seconds)
+                        .fold(f64::INFINITY, f64::min)
+                };
+                cheapest_holding = cheapest_holding.min(seconds(true));
+                let cheapest_here = seconds(false);
                 grid.extend(runs);
-                if held {
+                if cheapest_holding.is_finite() && cheapest_here >= cheapest_holding {
                     break;
                 }
             }
@@ -386,7 +396,8 @@ pub fn markdown(spec: &CheckSpec, checked: &Checked, command: &str) -> String {
          reference's own error is at most {REFERENCE_MARGIN} × the smallest EPS. Its \
          CPU (one thread, pilots included) is set beside the cheapest run of the grid (every \
          method that can start, at N = {:?}, each at its default step and at its tolerance step \
-         where that is another, without a shadow; where none holds the smallest EPS the \
+         where that is another, without a shadow, up to the N where one of its runs holds the \
+         smallest EPS and none costs less than the cheapest that holds; where none holds the smallest EPS the \
          reference can judge, on at N = {:?} up to the first N where one does) whose largest \
          error also holds EPS. A \
          tolerance is checked only where the reference's own error at the frames is at most \
