@@ -6,7 +6,7 @@
 //! check, read or computed.
 
 use super::tip_reference::{
-    ConvergedTip, LOG_RATE, REFERENCE_RATE, REFERENCE_ROWS_RATE, TipReference,
+    ConvergedTip, LOG_RATE, REFERENCE_RATE, REFERENCE_ROWS_RATE, TipReference, csv_field,
 };
 use crate::error::ConfigError;
 use crate::model::{Point, Scene};
@@ -116,10 +116,12 @@ fn parse(
             )));
         }
     }
-    let labels: Vec<String> = scenes.iter().map(ToString::to_string).collect();
+    let labels: Vec<String> = scenes.iter().map(|s| csv_field(&s.to_string())).collect();
     let mut rows: Vec<Vec<(f64, Point, f64)>> = vec![Vec::new(); scenes.len()];
     for (i, line) in lines {
-        let fields: Vec<&str> = line.split(',').collect();
+        // The label first (quoted where it holds a comma), then four numbers.
+        let mut fields: Vec<&str> = line.rsplitn(5, ',').collect();
+        fields.reverse();
         let bad = |what: &str| unreadable(format!("line {}: {what}: {line:?}", i + 1));
         let [label, t, x, y, own] = fields[..] else {
             return Err(bad("not five fields"));
@@ -293,6 +295,24 @@ mod tests {
         let none = read_all(std::slice::from_ref(&path), &[MODE], 3.0).unwrap();
         std::fs::remove_file(&path).unwrap();
         assert!(none.is_empty());
+    }
+
+    #[test]
+    fn a_scene_whose_label_holds_commas_is_written_quoted_and_read_back() {
+        let shake = Scene::Shake {
+            amplitude: 0.1,
+            frequency: 2.0,
+            start: crate::model::ShakeStart::Rest,
+        };
+        assert!(shake.to_string().contains(','));
+        let path = file("shake.csv", shake, 3000.0, 3.0);
+        let text = std::fs::read_to_string(&path).unwrap();
+        let read = read_all(std::slice::from_ref(&path), &[THIRTY, shake], 3.0).unwrap();
+        std::fs::remove_file(&path).unwrap();
+        assert!(text.lines().nth(1).unwrap().starts_with('"'), "{text:.80}");
+        assert_eq!(read.len(), 1);
+        assert_eq!(read[0].scene, shake);
+        assert!((read[0].tip_at(1.5) - Point::new(1.5f64.cos(), 1.5f64.sin())).norm() < 1e-8);
     }
 
     #[test]

@@ -263,9 +263,19 @@ pub fn write_reference_csv(
     let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
     writeln!(out, "scene,t,tip_x,tip_y,own_error")?;
     for (scene, t, tip, own) in rows {
-        writeln!(out, "{scene},{t},{:.9},{:.9},{own:.1e}", tip.x, tip.y)?;
+        let label = csv_field(&scene.to_string());
+        writeln!(out, "{label},{t},{:.9},{:.9},{own:.1e}", tip.x, tip.y)?;
     }
     out.flush()
+}
+
+/// `text` as one CSV field: quoted (its quotes doubled) where it holds a comma or a quote, as
+/// a shake's label does (`shake (A = 0.1, Ω = 2, from rest)`).
+pub fn csv_field(text: &str) -> String {
+    match text.contains([',', '"']) {
+        true => format!("\"{}\"", text.replace('"', "\"\"")),
+        false => text.to_owned(),
+    }
 }
 
 #[cfg(test)]
