@@ -285,14 +285,8 @@ fn tolerance_check(
         crate::study::read_reference::read_all(&args.references, &spec.scenes, spec.duration)?;
     let (mut read_for, mut too_coarse) = (Vec::new(), Vec::new());
     for scene in &spec.scenes {
-        let best = read
-            .iter()
-            .filter(|r| r.scene == *scene)
-            .min_by(|a, b| a.own_error.total_cmp(&b.own_error));
-        match (
-            crate::study::tolerance_check::usable(&spec, &read, scene),
-            best,
-        ) {
+        use crate::study::tolerance_check::{best_read, usable};
+        match (usable(&spec, &read, scene), best_read(&read, scene)) {
             (Some(r), _) => read_for.push(format!("{scene} (from {})", r.source.display())),
             (None, Some(r)) => too_coarse.push(format!(
                 "{scene} ({} errs by {:.1e} at the frames)",

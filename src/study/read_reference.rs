@@ -6,14 +6,12 @@
 //! check, read or computed.
 
 use super::tip_reference::{
-    ConvergedTip, LOG_RATE, REFERENCE_RATE, REFERENCE_ROWS_RATE, TipReference, csv_field,
+    ConvergedTip, LOG_RATE, REFERENCE_RATE, REFERENCE_ROWS_RATE, REFERENCES_HEADER as HEADER,
+    TipReference, csv_field,
 };
 use crate::error::ConfigError;
 use crate::model::{Point, Scene};
 use std::path::{Path, PathBuf};
-
-/// The first line of a references file.
-pub const HEADER: &str = "scene,t,tip_x,tip_y,own_error";
 
 /// One scene's converged tip read from a references file.
 #[derive(Clone, Debug)]
@@ -64,12 +62,8 @@ pub fn read_all(
 ) -> Result<Vec<ReadReference>, ConfigError> {
     let mut read = Vec::new();
     for path in paths {
-        let unreadable = |reason: String| ConfigError::ReferencesUnreadable {
-            path: path.display().to_string(),
-            reason,
-        };
         if path.is_dir() {
-            let entries = std::fs::read_dir(path).map_err(|e| unreadable(e.to_string()))?;
+            let entries = std::fs::read_dir(path).map_err(|e| unreadable(path, e.to_string()))?;
             let mut files: Vec<PathBuf> = entries
                 .filter_map(|e| e.ok().map(|e| e.path()))
                 .filter(|p| p.extension().is_some_and(|x| x == "csv"))
@@ -88,11 +82,16 @@ pub fn read_all(
     Ok(read)
 }
 
-fn read_text(path: &Path) -> Result<String, ConfigError> {
-    std::fs::read_to_string(path).map_err(|e| ConfigError::ReferencesUnreadable {
+/// Why the references file or folder at `path` cannot serve.
+fn unreadable(path: &Path, reason: String) -> ConfigError {
+    ConfigError::ReferencesUnreadable {
         path: path.display().to_string(),
-        reason: e.to_string(),
-    })
+        reason,
+    }
+}
+
+fn read_text(path: &Path) -> Result<String, ConfigError> {
+    std::fs::read_to_string(path).map_err(|e| unreadable(path, e.to_string()))
 }
 
 /// The references of `scenes` in the text of the file at `path`.
@@ -102,18 +101,17 @@ fn parse(
     scenes: &[Scene],
     duration: f64,
 ) -> Result<Vec<ReadReference>, ConfigError> {
-    let unreadable = |reason: String| ConfigError::ReferencesUnreadable {
-        path: path.display().to_string(),
-        reason,
-    };
     let mut lines = text.lines().enumerate();
     match lines.next() {
         Some((_, HEADER)) => {}
         first => {
-            return Err(unreadable(format!(
-                "its first line is {:?}, not the header of a references file, {HEADER:?}",
-                first.map_or("", |(_, l)| l)
-            )));
+            return Err(unreadable(
+                path,
+                format!(
+                    "its first line is {:?}, not the header of a references file, {HEADER:?}",
+                    first.map_or("", |(_, l)| l)
+                ),
+            ));
         }
     }
     let labels: Vec<String> = scenes.iter().map(|s| csv_field(&s.to_string())).collect();
@@ -122,7 +120,7 @@ fn parse(
         // The label first (quoted where it holds a comma), then four numbers.
         let mut fields: Vec<&str> = line.rsplitn(5, ',').collect();
         fields.reverse();
-        let bad = |what: &str| unreadable(format!("line {}: {what}: {line:?}", i + 1));
+        let bad = |what: &str| unreadable(path, format!("line {}: {what}: {line:?}", i + 1));
         let [label, t, x, y, own] = fields[..] else {
             return Err(bad("not five fields"));
         };
@@ -140,7 +138,9 @@ fn parse(
         .iter()
         .zip(rows)
         .filter(|(_, rows)| !rows.is_empty())
-        .map(|(scene, rows)| checked(path, *scene, &rows, duration).map_err(&unreadable))
+        .map(|(scene, rows)| {
+            checked(path, *scene, &rows, duration).map_err(|reason| unreadable(path, reason))
+        })
         .collect()
 }
 

@@ -229,6 +229,9 @@ pub const REFERENCE_RATE: f64 = 1000.0;
 /// to 1e-3 at 1 000 rows a unit).
 pub const REFERENCE_ROWS_RATE: f64 = 3000.0;
 
+/// The first line of `references.csv`, and of any file in its columns.
+pub const REFERENCES_HEADER: &str = "scene,t,tip_x,tip_y,own_error";
+
 /// `references.csv`: each reference's tip and its own error ([`ConvergedTip::own_error_at`])
 /// every 1/[`REFERENCE_ROWS_RATE`] of a time unit to `duration`, for anyone to hold another
 /// solver against, and for `rope study --tolerance-check --references` to read back.
@@ -261,7 +264,7 @@ pub fn write_reference_csv(
 ) -> std::io::Result<()> {
     use std::io::Write as _;
     let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
-    writeln!(out, "scene,t,tip_x,tip_y,own_error")?;
+    writeln!(out, "{REFERENCES_HEADER}")?;
     for (scene, t, tip, own) in rows {
         let label = csv_field(&scene.to_string());
         writeln!(out, "{label},{t},{:.9},{:.9},{own:.1e}", tip.x, tip.y)?;

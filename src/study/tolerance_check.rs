@@ -244,19 +244,22 @@ impl CheckSpec {
     }
 }
 
-/// The reference of `read` the check takes for `scene` instead of computing one: of those that
-/// can judge the smallest EPS (own error at the frames at most [`REFERENCE_MARGIN`] × it), the
-/// one whose own error at the frames is least.
+/// Of the references in `read` of `scene`, the one whose own error at the frames is least.
+pub fn best_read<'a>(read: &'a [ReadReference], scene: &Scene) -> Option<&'a ReadReference> {
+    read.iter()
+        .filter(|r| r.scene == *scene)
+        .min_by(|a, b| a.own_error.total_cmp(&b.own_error))
+}
+
+/// The reference of `read` the check takes for `scene` instead of computing one: the
+/// [`best_read`], where it can judge the smallest EPS (its own error at the frames at most
+/// [`REFERENCE_MARGIN`] × it).
 pub fn usable<'a>(
     spec: &CheckSpec,
     read: &'a [ReadReference],
     scene: &Scene,
 ) -> Option<&'a ReadReference> {
-    read.iter()
-        .filter(|r| {
-            r.scene == *scene && r.own_error <= REFERENCE_MARGIN * spec.smallest_tolerance()
-        })
-        .min_by(|a, b| a.own_error.total_cmp(&b.own_error))
+    best_read(read, scene).filter(|r| r.own_error <= REFERENCE_MARGIN * spec.smallest_tolerance())
 }
 
 /// The whole check: a reference per scene (read from `read` where [`usable`], else computed,
