@@ -1,14 +1,15 @@
 //! The release atlas: the worst tip error to t = 3 of the rods (the chain at its tolerance
-//! step) from each release angle 0°, 10°, …, 90° at N = 16 … 1131, against the chain
-//! extrapolated from N = 800, 1600 and 3200; and the same at the held-out angles 5°, 15°, …,
-//! 85°, which measure how far an angle between two of the atlas's can stray from them.
-//! `scripts/release-atlas.sh` runs it (about half an hour on 2 cores) and writes
+//! step) from each release angle 0°, 10°, …, 90° at N = 16 … 566, against a reference; and
+//! the same at the held-out angles 5°, 15°, …, 85°, which measure how far an angle between two
+//! of the atlas's can stray from them. A reference is read (`--references`, below) or computed
+//! as the tolerance check's are: the graded rods from 20° up, else the chain
+//! (`tolerance_check::reference_method`), extrapolated from N = 800, 1600 and 3200.
+//! `scripts/release-atlas.sh` runs it, reading the check's committed references, and writes
 //! `assets/release-atlas/atlas.csv`, which `--tolerance` reads at build time
 //! (`rope::plan::atlas`).
 //!
 //! `release_atlas graded`: the same of the graded rods (`--method graded`) at their tolerance
-//! step, against the graded rods extrapolated from N = 800, 1600 and 3200, from 20° up
-//! ([`GRADED_FROM`]); `scripts/release-atlas.sh graded` writes
+//! step, from 20° up ([`GRADED_FROM`]); `scripts/release-atlas.sh graded` writes
 //! `assets/release-atlas/graded-atlas.csv`. `release_atlas graded 30,40`: those angles' rows
 //! alone, measured in that order (each angle's rows are printed as soon as they are done).
 //!
@@ -16,13 +17,22 @@
 //! ([`LONGER_FROM`]), against references refined towards [`LONGER_REFINED_TO`], once at most;
 //! `scripts/release-atlas.sh graded --until 5` writes `assets/release-atlas/graded-atlas-t5.csv`.
 //!
-//! Each row runs to N = 1131, the chain's below 20° to 3200 where its reference could judge
-//! 1e-4 ([`reach`]); `--to N` sets another end (one of [`SEGMENTS`]).
+//! Each row runs to N = 1131, the chain's from 20° up to 566 ([`CHAIN_MEASURED_TO`]) and below
+//! 20° to 3200 where its reference could judge 1e-4 ([`reach`]); `--to N` sets another end
+//! (one of [`SEGMENTS`]).
 //!
 //! `release_atlas graded --add 1600`: each angle's entry at that one N (one of [`SEGMENTS`])
 //! alone, to be added to its committed row, against a reference refined from N = 1600 until
 //! it could judge 1e-4 ([`ADDED_REFINED_TO`]; runs up to N = 12 800);
 //! `scripts/release-atlas.sh graded --add 1600` merges the entries into `graded-atlas.csv`.
+//!
+//! `release_atlas … --references PATH`: where PATH (a references CSV as `rope study
+//! --tolerance-check` writes, or a folder of them; the flag may be repeated) holds an angle's
+//! reference whose own error at the frames is at most [`ADDED_REFINED_TO`] (it can judge
+//! 1e-4, the tightest tolerance an atlas serves) or what the atlas would refine its own
+//! towards, the least such is read and measured against instead of computed (at its rows:
+//! every frame is one). The rows then name it `read` in their `reference_segments`
+//! column (`plan::atlas` does not read that column).
 //!
 //! A reference whose own error is above [`REFINED_TO`] is made from N = 1600, 3200 and 6400
 //! instead. The graded rods' is doubled once more (to at most [`TWICE_REFINED`]) where it
@@ -37,9 +47,11 @@ use rope::plan::atlas::{
     ATLAS_ANGLES, Atlas, GRADED_FROM, HELD_OUT_ANGLES, LONGER_FROM, REFERENCE_MARGIN, SEGMENTS,
     WINDOW, trusted,
 };
+use rope::study::read_reference::{CheckReference, read_all};
 use rope::study::tip_reference::TipReference;
-use rope::study::tolerance_check::measure;
+use rope::study::tolerance_check::{best_read, measure, reference_method};
 use std::io::Write;
+use std::path::PathBuf;
 
 /// The reference's N: runs at N/2, N and 2N.
 const REFERENCE_SEGMENTS: usize = 1600;
@@ -62,6 +74,14 @@ const LONGER_REFINED_TO: f64 = 1e-5;
 
 /// The largest N measured unless `--to` or [`reach`] says otherwise.
 const MEASURED_TO: usize = 1131;
+
+/// The largest N the chain's rows are measured to from [`GRADED_FROM`] up. Measured on to
+/// 1131 against the committed references (`assets/release-atlas/chain-to-1131.csv`), its
+/// held-out angles stray up to 1.96 times above their neighbours (65° at N = 1131; 1.36 at
+/// 800), where up to N = 566 they stray at most 1.22 times: the one margin of the atlas would
+/// be 1.96 at every N, and the choices at 1e-2 and 1e-3 between the angles would pay it. From
+/// 20° up the graded rods are the cheaper where the chain would need more than 566.
+const CHAIN_MEASURED_TO: usize = 566;
 
 /// The largest N the chain's rows are measured to below [`GRADED_FROM`], where no other rods
 /// may be chosen: from 10° the chain needs about 2000 rods for 1e-4.
@@ -87,6 +107,8 @@ fn main() -> anyhow::Result<()> {
     let mut add = None;
     // Only these angles, where given (to remeasure some rows).
     let mut only: Option<Vec<f64>> = None;
+    // References files or folders to read where they are fine enough (`--references PATH`).
+    let mut references: Vec<PathBuf> = Vec::new();
     let mut args = std::env::args().skip(1);
     while let Some(arg) = args.next() {
         match arg.as_str() {
@@ -101,6 +123,10 @@ fn main() -> anyhow::Result<()> {
                         anyhow::anyhow!("--until takes a duration > 0 ({value:?} given)")
                     })?;
             }
+            "--references" => match args.next() {
+                Some(path) => references.push(path.into()),
+                None => anyhow::bail!("--references takes a references CSV or a folder of them"),
+            },
             flag @ ("--to" | "--add") => {
                 let value = args.next().unwrap_or_default();
                 let n = value
@@ -119,7 +145,7 @@ fn main() -> anyhow::Result<()> {
                 only = Some(list.split(',').map(str::parse).collect::<Result<_, _>>()?);
             }
             other => anyhow::bail!(
-                "usage: release_atlas [graded] [--until T] [--to N | --add N] [ANGLES] ({other:?} given)"
+                "usage: release_atlas [graded] [--until T] [--to N | --add N] [--references PATH]… [ANGLES] ({other:?} given)"
             ),
         }
     }
@@ -153,6 +179,11 @@ fn main() -> anyhow::Result<()> {
     if let Some(a) = angles.iter().find(|a| !every.contains(a)) {
         anyhow::bail!("{a}° is not an atlas or held-out angle from {from}° up");
     }
+    let scenes: Vec<Scene> = angles
+        .iter()
+        .map(|&angle_deg| Scene::Release { angle_deg })
+        .collect();
+    let read = read_all(&references, &scenes, window)?;
     let angles: Vec<(&str, f64)> = angles.into_iter().map(|a| (set(a), a)).collect();
     // Each angle's rows are printed as soon as they are measured, so that a run stopped
     // early keeps the angles it finished.
@@ -163,16 +194,31 @@ fn main() -> anyhow::Result<()> {
         .par_bridge()
         .try_for_each(|(set, angle_deg)| -> anyhow::Result<()> {
             let scene = Scene::Release { angle_deg };
-            let mut reference = TipReference::refined_by(
-                method,
-                &scene,
-                REFERENCE_SEGMENTS,
-                most,
-                refined_to,
-                window,
-            )?;
-            let row = |reference: &TipReference| -> Vec<(usize, f64)> {
-                let to = to.unwrap_or_else(|| reach(method, angle_deg, reference.own_error));
+            // A reference read where it can judge the tightest tolerance an atlas serves, or
+            // is as fine as the atlas would refine its own; else computed.
+            let read_within = refined_to.max(ADDED_REFINED_TO);
+            let mut reference = match best_read(&read, &scene) {
+                Some(r) if r.own_error <= read_within => CheckReference::Read(r.clone()),
+                other => {
+                    if let Some(r) = other {
+                        eprintln!(
+                            "{set} {angle_deg}°: `{}` errs by {:.1e} at the frames, above {read_within:.0e}; computed",
+                            r.source.display(),
+                            r.own_error
+                        );
+                    }
+                    CheckReference::Computed(TipReference::refined_by(
+                        reference_method(&scene, window),
+                        &scene,
+                        REFERENCE_SEGMENTS,
+                        most,
+                        refined_to,
+                        window,
+                    )?)
+                }
+            };
+            let row = |reference: &CheckReference| -> Vec<(usize, f64)> {
+                let to = to.unwrap_or_else(|| reach(method, angle_deg, reference.own_error()));
                 SEGMENTS
                     .iter()
                     .filter(|&&n| add.map_or(n <= to, |added| n == added))
@@ -185,32 +231,41 @@ fn main() -> anyhow::Result<()> {
                     .collect()
             };
             let mut worst = row(&reference);
-            if method == MethodKind::Graded
+            if let CheckReference::Computed(computed) = &reference
+                && method == MethodKind::Graded
                 && !longer
                 && add.is_none()
-                && reference.segments * 2 <= TWICE_REFINED
-                && reference.own_error > ROUND_OFF
-                && keeps_out(set, angle_deg, &worst, reference.own_error)
+                && computed.segments * 2 <= TWICE_REFINED
+                && computed.own_error > ROUND_OFF
+                && keeps_out(set, angle_deg, &worst, computed.own_error)
             {
                 eprintln!(
                     "{set} {angle_deg}°: own error {:.1e} at N = {}; doubled",
-                    reference.own_error, reference.segments
+                    computed.own_error, computed.segments
                 );
-                reference = reference.doubled()?;
+                reference = CheckReference::Computed(computed.clone().doubled()?);
                 worst = row(&reference);
             }
-            eprintln!(
-                "{set} {angle_deg}°: reference N = {} (order {:.2}), own error {:.1e}",
-                reference.segments, reference.order, reference.own_error
-            );
+            let own = reference.own_error();
+            let segments = match &reference {
+                CheckReference::Read(r) => {
+                    eprintln!(
+                        "{set} {angle_deg}°: reference read from `{}`, own error {own:.1e}",
+                        r.source.display()
+                    );
+                    "read".to_owned()
+                }
+                CheckReference::Computed(r) => {
+                    eprintln!(
+                        "{set} {angle_deg}°: reference N = {} (order {:.2}), own error {own:.1e}",
+                        r.segments, r.order
+                    );
+                    r.segments.to_string()
+                }
+            };
             let lines: Vec<String> = worst
                 .into_iter()
-                .map(|(n, worst)| {
-                    format!(
-                        "{set},{angle_deg},{n},{worst:.4e},{},{:.2e}",
-                        reference.segments, reference.own_error
-                    )
-                })
+                .map(|(n, worst)| format!("{set},{angle_deg},{n},{worst:.4e},{segments},{own:.2e}"))
                 .collect();
             let mut out = stdout
                 .lock()
@@ -224,12 +279,15 @@ fn main() -> anyhow::Result<()> {
 
 /// The largest N measured from `angle_deg` against a reference whose own error is `own`: the
 /// chain's below [`GRADED_FROM`] on to [`CHAIN_ALONE_TO`] where the reference could judge
-/// [`CHAIN_ALONE_FOR`] (a tenth of it), else [`MEASURED_TO`].
+/// [`CHAIN_ALONE_FOR`] (a tenth of it); the chain's from [`GRADED_FROM`] up to
+/// [`CHAIN_MEASURED_TO`]; else (the graded rods', the chain's below 20° against a coarser
+/// reference) to [`MEASURED_TO`].
 fn reach(method: MethodKind, angle_deg: f64, own: f64) -> usize {
-    let alone = method == MethodKind::Chain && angle_deg < GRADED_FROM;
-    match alone && own <= REFERENCE_MARGIN * CHAIN_ALONE_FOR {
-        true => CHAIN_ALONE_TO,
-        false => MEASURED_TO,
+    let chain = method == MethodKind::Chain;
+    match (chain, angle_deg < GRADED_FROM) {
+        (true, true) if own <= REFERENCE_MARGIN * CHAIN_ALONE_FOR => CHAIN_ALONE_TO,
+        (true, false) => CHAIN_MEASURED_TO,
+        _ => MEASURED_TO,
     }
 }
 
