@@ -29,9 +29,10 @@
 //! one N (from 30° and 40° at N = 1 131 the graded rods err by 1.8e-5, 35° between them by
 //! 6.6e-5): the neighbours' margin then grows with the dip, where the envelope's does not.
 //! The atlas serves only what it measured: the rods, a release, runs to t ≤ 3, N ≤ 566 (below
-//! 20° 1131, from 10° 3200; the graded rods' 1600); elsewhere the method's one law stands. The graded rods have a
-//! second atlas, to t = 5 from 40° ([`LONGER_WINDOW`], [`LONGER_FROM`]), for runs from t = 3 to 5,
-//! where the one law, fitted to t ≤ 3, does not cover the run and the pilots' figure rules instead.
+//! 20° 1131, from 10° 3200; the graded rods' 1600); elsewhere the method's one law stands. The
+//! graded rods have a second atlas, to t = 5 from 40° ([`LONGER_WINDOW`], [`LONGER_FROM`]), for
+//! runs from t = 3 to 5, where the one law, fitted to t ≤ 3, does not cover the run and the
+//! pilots' figure rules instead.
 
 use crate::methods::MethodKind;
 use crate::methods::error_model::ErrorModel;
