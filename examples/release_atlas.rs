@@ -184,6 +184,9 @@ fn main() -> anyhow::Result<()> {
         .map(|&angle_deg| Scene::Release { angle_deg })
         .collect();
     let read = read_all(&references, &scenes, window)?;
+    // A reference is read where it can judge the tightest tolerance an atlas serves, or is as
+    // fine as the atlas would refine its own; else computed.
+    let read_within = refined_to.max(ADDED_REFINED_TO);
     let angles: Vec<(&str, f64)> = angles.into_iter().map(|a| (set(a), a)).collect();
     // Each angle's rows are printed as soon as they are measured, so that a run stopped
     // early keeps the angles it finished.
@@ -194,9 +197,6 @@ fn main() -> anyhow::Result<()> {
         .par_bridge()
         .try_for_each(|(set, angle_deg)| -> anyhow::Result<()> {
             let scene = Scene::Release { angle_deg };
-            // A reference read where it can judge the tightest tolerance an atlas serves, or
-            // is as fine as the atlas would refine its own; else computed.
-            let read_within = refined_to.max(ADDED_REFINED_TO);
             let mut reference = match best_read(&read, &scene) {
                 Some(r) if r.own_error <= read_within => CheckReference::Read(r.clone()),
                 other => {

@@ -64,8 +64,8 @@ fn the_quick_tolerance_check_holds_eps_against_a_converged_reference_in_each_sce
 }
 
 /// The committed `assets/tolerance-check/references.csv` (written by the full check): every
-/// scene of the check, its tip every 1/3000 to t = 3 (every frame and every 1/1000), held to what the physics of the string
-/// says, whatever the extrapolation did.
+/// scene of the check, its tip every 1/3000 to t = 3 (every frame and every 1/1000), held to
+/// what the physics of the string says, whatever the extrapolation did.
 #[test]
 fn the_committed_references_obey_the_physics_of_the_string() {
     let path = concat!(

@@ -332,8 +332,9 @@ pub fn execute_estimate_check(
 }
 
 /// What `--tolerance` chooses in each scene of `spec` (its references read from `read` where
-/// they can judge it), against the truth and the grid's cheapest run; writes `tolerance_check.md`, the references' tips (`references.csv`) and
-/// the chart `tolerance_check.svg`/`.png` into `out`. Returns the Markdown. `tick` is called
+/// they can judge it), against the truth and the grid's cheapest run; writes
+/// `tolerance_check.md`, the references' tips (`references.csv`) and the chart
+/// `tolerance_check.svg`/`.png` into `out`. Returns the Markdown. `tick` is called
 /// once per reference, run and choice.
 pub fn execute_tolerance_check(
     spec: &tolerance_check::CheckSpec,
