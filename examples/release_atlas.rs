@@ -202,7 +202,7 @@ fn main() -> anyhow::Result<()> {
                 other => {
                     if let Some(r) = other {
                         eprintln!(
-                            "{set} {angle_deg}°: `{}` errs by {:.1e} at the frames, above {read_within:.0e}; computed",
+                            "{set} {angle_deg}°: `{}` errs by {:.1e} at every 1/3000, above {read_within:.0e}; computed",
                             r.source.display(),
                             r.own_error
                         );

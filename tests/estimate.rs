@@ -107,7 +107,7 @@ fn run_with_tolerance(segments: usize, tolerance: f64) -> (rope::run::Summary, u
     let (mut tx, rx) = crossbeam_channel::unbounded();
     let summary = pipeline::run(&plan, &mut tx, &AtomicBool::new(false), &|_| {}).unwrap();
     drop(tx);
-    let said = rx.iter().filter(|f| f.tolerance_exceeded).count();
+    let said = rx.iter().filter(|f| f.tolerance_exceeded.is_some()).count();
     (summary, said)
 }
 

@@ -45,7 +45,9 @@ fn tolerance_run(name: &str, flags: &[&str]) -> (serde_json::Value, String) {
     ]);
     let out = rope(&args);
     let said = String::from_utf8_lossy(&out.stderr).into_owned();
-    assert!(out.status.success(), "{said}");
+    // 0, or 4 where the live estimate's first-order bound passed EPS: the run ran either way,
+    // and these tests judge its choice themselves.
+    assert!(matches!(out.status.code(), Some(0 | 4)), "{said}");
     (summary(&json), said)
 }
 
@@ -180,7 +182,7 @@ fn a_pilot_whose_shadow_fails_flies_on_where_the_estimate_can_start() {
     // that level, not the seed: the seed flies the next levels, where it measures the first
     // order in h of its finite differences, and is not chosen (far dearer at 1e-3).
     let thirty = Scene::Release { angle_deg: 30.0 };
-    let (choice, pilots) = pilot::choose(1e-3, &thirty, 3.0, 60.0, u64::MAX).unwrap();
+    let (choice, pilots) = pilot::choose(1e-3, &thirty, 3.0, u64::MAX).unwrap();
     let seed = pilots.flown.iter().find(|p| p.method == MethodKind::Seed);
     let seed = seed.expect("the seed scheme can start from 30°: its pilot flies");
     assert!(seed.diverged.is_none(), "{seed:?}");
@@ -214,7 +216,7 @@ fn a_pilot_that_already_holds_is_the_run_chosen_and_the_climb_stops_there() {
         number: 1,
         amplitude: 0.05,
     };
-    let (choice, pilots) = pilot::choose(1e-3, &mode, 3.0, 60.0, u64::MAX).unwrap();
+    let (choice, pilots) = pilot::choose(1e-3, &mode, 3.0, u64::MAX).unwrap();
     assert_eq!(pilots.basis, pilot::Basis::Held);
     let held: Vec<_> = pilots
         .flown
@@ -269,7 +271,7 @@ fn pilots_stop_where_measuring_would_cost_more_than_the_committed_choice() {
     // it is never flown and the committed choice is made. (The seed's pilots, far cheaper a
     // level than the rods', fit within it up to the top.)
     let thirty = Scene::Release { angle_deg: 30.0 };
-    let (choice, pilots) = pilot::choose(1e-2, &thirty, 3.0, 60.0, u64::MAX).unwrap();
+    let (choice, pilots) = pilot::choose(1e-2, &thirty, 3.0, u64::MAX).unwrap();
     let committed = tolerance::choose(1e-2, 3.0, &thirty, |_, _, _| true).unwrap();
     assert_eq!(choice, committed);
     assert_eq!(pilots.basis, pilot::Basis::Atlas);
@@ -290,7 +292,7 @@ fn methods_of_one_discretization_fly_one_pilot_the_cheapest() {
     // errors are the rods' own, so only the cheapest of them, the chain, flies; the others
     // say whose pilots stand for theirs.
     let thirty = Scene::Release { angle_deg: 30.0 };
-    let (_, pilots) = pilot::choose(1e-3, &thirty, 3.0, 60.0, u64::MAX).unwrap();
+    let (_, pilots) = pilot::choose(1e-3, &thirty, 3.0, u64::MAX).unwrap();
     let of = |m: MethodKind| pilots.flown.iter().find(|p| p.method == m).unwrap();
     assert!(of(MethodKind::Chain).flew() && of(MethodKind::Chain).measured_by.is_none());
     for m in [MethodKind::Rattle, MethodKind::Midpoint] {
@@ -315,7 +317,7 @@ fn a_scene_its_pilots_show_cheaper_is_run_from_their_model_and_holds() {
         number: 2,
         amplitude: 0.05,
     };
-    let (choice, pilots) = pilot::choose(1e-3, &mode, 3.0, 60.0, u64::MAX).unwrap();
+    let (choice, pilots) = pilot::choose(1e-3, &mode, 3.0, u64::MAX).unwrap();
     let committed = tolerance::choose(1e-3, 3.0, &mode, |_, _, _| true).unwrap();
     assert_eq!(pilots.basis, pilot::Basis::OwnModel, "{pilots:?}");
     assert!(
@@ -360,7 +362,7 @@ fn a_scene_its_pilots_show_cheaper_is_run_from_their_model_and_holds() {
 #[test]
 fn past_the_committed_window_the_pilots_measured_figure_rules() {
     let scene = Scene::Release { angle_deg: 45.0 };
-    let (choice, pilots) = pilot::choose(1e-3, &scene, 6.0, 60.0, u64::MAX).unwrap();
+    let (choice, pilots) = pilot::choose(1e-3, &scene, 6.0, u64::MAX).unwrap();
     assert!(
         matches!(pilots.basis, pilot::Basis::OwnModel | pilot::Basis::Held),
         "{:?}",
@@ -424,7 +426,7 @@ fn from_30_degrees_at_1e_4_the_graded_rods_are_chosen_from_their_atlas_for_a_fra
     // rods. The graded rods resolve the whip, and their atlas, against graded references that
     // err by a few 1e-6 from 20° to 30°, reaches 1e-4 there.
     let thirty = Scene::Release { angle_deg: 30.0 };
-    let (choice, pilots) = pilot::choose(1e-4, &thirty, 3.0, 60.0, u64::MAX).unwrap();
+    let (choice, pilots) = pilot::choose(1e-4, &thirty, 3.0, u64::MAX).unwrap();
     assert_eq!(choice.method, MethodKind::Graded, "{choice:?}");
     assert_eq!(pilots.basis, pilot::Basis::Atlas);
     let law = MethodKind::Chain.descriptor().error_model;
@@ -482,7 +484,7 @@ fn from_52_degrees_at_1e_4_the_graded_rods_take_the_envelope_of_every_angle() {
 #[test]
 fn from_10_degrees_at_1e_4_the_chain_takes_its_own_row_past_n_1131() {
     let ten = Scene::Release { angle_deg: 10.0 };
-    let (choice, pilots) = pilot::choose(1e-4, &ten, 3.0, 60.0, u64::MAX).unwrap();
+    let (choice, pilots) = pilot::choose(1e-4, &ten, 3.0, u64::MAX).unwrap();
     assert_eq!(choice.method, MethodKind::Chain, "{choice:?}");
     assert_eq!(pilots.basis, pilot::Basis::Atlas);
     assert_eq!(choice.segments, 2263, "{choice:?}");
@@ -504,7 +506,7 @@ fn past_t_3_the_graded_rods_are_chosen_only_from_40_degrees() {
     assert!(graded(SPIN_FREE_LONGER_FROM, 5.0) && graded(60.0, 5.0));
     assert!(!graded(10.0, 3.0) && !graded(10.0, 5.0));
     let thirty = Scene::Release { angle_deg: 30.0 };
-    let (_, pilots) = pilot::choose(1e-2, &thirty, 5.0, 60.0, u64::MAX).unwrap();
+    let (_, pilots) = pilot::choose(1e-2, &thirty, 5.0, u64::MAX).unwrap();
     assert!(pilots.flown.iter().all(|p| p.method != MethodKind::Graded));
     assert!(pilots.flown.iter().any(|p| p.method == MethodKind::Chain));
 }
@@ -512,7 +514,7 @@ fn past_t_3_the_graded_rods_are_chosen_only_from_40_degrees() {
 /// What `--tolerance eps` chooses for `scene` to `duration`, asserted to be the graded rods,
 /// from their atlas, within the N it measured.
 fn graded_rods_from_their_atlas(eps: f64, scene: &Scene, duration: f64) -> tolerance::Choice {
-    let (choice, pilots) = pilot::choose(eps, scene, duration, 60.0, u64::MAX).unwrap();
+    let (choice, pilots) = pilot::choose(eps, scene, duration, u64::MAX).unwrap();
     assert_eq!(choice.method, MethodKind::Graded, "{choice:?}");
     assert_eq!(pilots.basis, pilot::Basis::Atlas);
     let graded_atlas = atlas::Atlas::of(MethodKind::Graded, duration).unwrap();

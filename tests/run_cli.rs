@@ -601,7 +601,7 @@ fn tolerance_flag_prints_its_choice_and_runs_it() {
     assert!(out.status.success(), "{stderr}");
     // The method the rule picks, its pilots flown (every limit is far off at this tolerance).
     let scene = rope::model::Scene::Release { angle_deg: 30.0 };
-    let (rule, _) = rope::plan::pilot::choose(1e-2, &scene, 1.0, 60.0, u64::MAX).unwrap();
+    let (rule, _) = rope::plan::pilot::choose(1e-2, &scene, 1.0, u64::MAX).unwrap();
     assert!(
         stderr.contains(&format!("tolerance 1e-2: chose the {} method", rule.method)),
         "{stderr}"
@@ -892,4 +892,66 @@ fn a_blow_up_study_maps_the_seed_schemes_lifetime() {
         Some(2),
         "the seed cannot start from 0°"
     );
+}
+
+/// `--tolerance` from 30° at 1e-4 to t = 3 (where 60 frames a unit once read 8.8e-5 of a whip
+/// whose peak is 2.35e-4, and said the tolerance held), at 10, 60 and 600 frames a unit: the
+/// same method, N, k and predicted error, the same estimate and the same verdict and exit
+/// status whatever the frames. 600 is above the chosen step's rate: the frames fall on the
+/// steps, and the run is not refused.
+#[test]
+fn tolerance_choice_and_verdict_do_not_depend_on_the_frames() {
+    let dir = Scratch::new("tolerance-frames");
+    let run = |rate: &str| {
+        let json = dir.path(&format!("r{rate}.json"));
+        let out = rope(&[
+            "run",
+            "--angle",
+            "30",
+            "--tolerance",
+            "1e-4",
+            "--duration",
+            "3",
+            "--log-rate",
+            rate,
+            "--save",
+            dir.path(&format!("r{rate}.rrd")).to_str().unwrap(),
+            "--summary",
+            json.to_str().unwrap(),
+        ]);
+        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert!(
+            matches!(out.status.code(), Some(0 | 4)),
+            "--log-rate {rate}: {stderr}"
+        );
+        (out.status.code(), summary(&json), stderr)
+    };
+    // "chose the … method, N = …, k = …; predicted tip error at most …".
+    let chose = |stderr: &str| {
+        let from = stderr.find("chose the").expect("the choice announced");
+        let to = from + stderr[from..].find(", predicted cost").expect("its cost");
+        stderr[from..to].to_owned()
+    };
+    let (status, first, said) = run("60");
+    let same = [
+        "method",
+        "segments",
+        "dt",
+        "tolerance_met",
+        "tolerance_exceeded_at",
+    ];
+    for rate in ["10", "600"] {
+        let (other_status, other, stderr) = run(rate);
+        assert_eq!(status, other_status, "--log-rate {rate}: {stderr}");
+        assert_eq!(chose(&said), chose(&stderr), "--log-rate {rate}");
+        for key in same {
+            assert_eq!(
+                first[key], other[key],
+                "{key} at --log-rate {rate}: {other}"
+            );
+        }
+        // The estimate is watched at every step it shares with its shadow, frames or none.
+        let tip = |s: &serde_json::Value| s["error_estimate"]["max_tip"].as_f64().unwrap();
+        assert_eq!(tip(&first), tip(&other), "--log-rate {rate}");
+    }
 }

@@ -365,8 +365,14 @@ pub fn tighter_model(
     )
 }
 
-/// What `--tolerance EPS` chooses for `scene`, for a run of `duration` logging `log_rate`
-/// frames per time unit within `memory` bytes: the cheapest choice whose run fits in
+/// Frames per time unit a choice's cost counts, whatever the run will log: the frames cost
+/// little beside the steps, and a choice that followed them would change with `--log-rate`
+/// (from 30° at 1e-3 it did, between 60 and 600 frames a unit). Where the run goes, or how
+/// often it is drawn, never changes what it models.
+pub const COSTED_LOG_RATE: f64 = 60.0;
+
+/// What `--tolerance EPS` chooses for `scene`, for a run of `duration` within `memory` bytes
+/// (its frames costed at [`COSTED_LOG_RATE`], whatever it logs): the cheapest choice whose run fits in
 /// [`tolerance::MAX_SECONDS`] of CPU and that memory: a pilot run that already holds EPS, or
 /// the cheapest the scene's own error models allow (measured by the pilots' ladder), or the
 /// committed models' choice where the pilots would cost more than it (or found nothing).
@@ -375,7 +381,6 @@ pub fn choose(
     eps: f64,
     scene: &Scene,
     duration: f64,
-    log_rate: f64,
     memory: u64,
 ) -> Result<(Choice, Pilots), ConfigError> {
     scene.validate()?;
@@ -388,7 +393,7 @@ pub fn choose(
     let duration = duration.max(0.0);
     // The chosen run carries the live estimate (--tolerance needs it): its shadow counts.
     let cost_of = |method, segments, dt| {
-        Cost::of_estimated_run(method, segments, dt, duration, log_rate, true)
+        Cost::of_estimated_run(method, segments, dt, duration, COSTED_LOG_RATE, true)
     };
     let fits = |method, segments, dt| {
         let cost = cost_of(method, segments, dt);

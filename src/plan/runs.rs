@@ -86,21 +86,18 @@ pub fn plan_scene(request: &RunRequest, scene: Scene) -> Result<Planned, ConfigE
             });
         }
         Some(eps) => {
-            // `--tolerance EPS` for this scene, this run's duration, log rate and memory.
-            let (choice, pilots) = pilot::choose(
-                eps,
-                &scene,
-                request.duration,
-                request.log_rate,
-                request.limits.memory(),
-            )?;
+            // `--tolerance EPS` for this scene, this run's duration and memory: never its
+            // frames, so that where and how often it is drawn changes nothing it models.
+            let (choice, pilots) =
+                pilot::choose(eps, &scene, request.duration, request.limits.memory())?;
             // A loose tolerance may choose a step longer than the default frame
-            // interval: then a frame at every step the estimate's shadow shares (where
-            // the tolerance is watched), unless --log-rate asked for more.
-            let most = 1.0 / (choice.dt * crate::run::estimate::STRIDE as f64);
+            // interval: then a frame at every step the estimate's shadow shares, unless
+            // --log-rate asked for more; never more than a frame a step (the frames fall
+            // on the steps: the step does not follow the frames).
+            let shared = 1.0 / (choice.dt * crate::run::estimate::STRIDE as f64);
             let log_rate = match request.log_rate_asked {
-                true => request.log_rate,
-                false => asked.log_rate.min(most),
+                true => request.log_rate.min(1.0 / choice.dt),
+                false => asked.log_rate.min(shared),
             };
             let chosen = RunConfig {
                 method: choice.method,

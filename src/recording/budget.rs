@@ -233,7 +233,7 @@ fn sample_frame(plan: &RunPlan, step: u64, time: f64, lane: Option<usize>) -> Fr
             tip: 1e-4,
             shape: 1e-4,
         }),
-        tolerance_exceeded: false,
+        tolerance_exceeded: None,
         lane: lane.map(|index| Lane {
             index,
             method: plan.method,

@@ -395,12 +395,12 @@ impl RopeLogger {
         frames: &[&Frame],
     ) -> rerun::RecordingStreamResult<()> {
         let lane = &self.lanes[lane];
-        for f in frames.iter().filter(|f| f.tolerance_exceeded) {
-            let tip = f.error_estimate.map_or(f64::NAN, |e| e.tip);
+        for passed in frames.iter().filter_map(|f| f.tolerance_exceeded) {
+            let tip = passed.estimate;
             let eps = self.tolerance.unwrap_or(f64::NAN);
             let times = timelines(
-                [self.time_offset + f.time],
-                [(self.step_offset + f.step) as i64],
+                [self.time_offset + passed.time],
+                [(self.step_offset + passed.step) as i64],
             );
             for (entity, value) in [
                 (path::TOLERANCE_PASSED, tip),
@@ -417,8 +417,8 @@ impl RopeLogger {
                 times,
                 rerun::TextLog::update_fields()
                     .with_text(format!(
-                        "the estimated tip error {tip:.1e} passed the tolerance {eps:.1e} at t = {:.3}",
-                        f.time
+                        "the estimated tip error {tip:.1e} passed the tolerance {eps:.1e} at t = {:.4}",
+                        passed.time
                     ))
                     .with_level(rerun::TextLogLevel::WARN)
                     .columns_of_unit_batches()?,

@@ -154,7 +154,7 @@ impl RunConfig {
                 limit,
             });
         }
-        if self.log_rate * dt > 1.0 {
+        if self.log_rate * dt > 1.0 + 1e-12 {
             return Err(ConfigError::LogRateAboveSteps {
                 log_rate: self.log_rate,
                 dt,

@@ -30,22 +30,29 @@ pub struct Options {
 }
 
 /// The live error estimate a run carries: its shadow at N/2, and the tolerance the estimate
-/// is held to, if one was asked for.
+/// is held to, if one was asked for. The tip's estimate is made at every step the run shares
+/// with its shadow, so that what it says of the run does not depend on the frames.
 pub struct Watch<'a> {
     pub shadow: &'a mut Shadow,
-    /// EPS of `--tolerance`: the first frame whose tip estimate passes it says so.
+    /// EPS of `--tolerance`: the first step whose tip bound (the estimate at first order,
+    /// [`TipEstimate::bound`](super::estimate::TipEstimate::bound)) passes it says so.
     pub tolerance: Option<f64>,
 }
 
 /// What the live error estimate said over a run.
 #[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
 pub struct EstimateOutcome {
-    /// The largest tip estimate at any frame, and when.
+    /// The largest tip estimate at any step the run shares with its shadow (every
+    /// [`STRIDE`] steps: at every instant, whatever the frames), and when.
     pub max_tip: f64,
     pub max_tip_time: f64,
-    /// The largest shape estimate at any frame.
+    /// The largest first-order bound of the tip's error there
+    /// ([`TipEstimate::bound`](super::estimate::TipEstimate::bound)): what a tolerance is held
+    /// to.
+    pub max_tip_bound: f64,
+    /// The largest shape estimate at any frame (the shape is compared at the frames alone).
     pub max_shape: f64,
-    /// The tip estimate at the last frame that had one.
+    /// The tip estimate at the last step that had one.
     pub final_tip: Option<f64>,
     /// Why the shadow stopped before the run did, if it did: no estimate after that.
     pub lost: Option<Diverged>,
@@ -96,14 +103,25 @@ pub struct Frame {
     /// Richardson's estimate of this frame's error, for a run with a shadow at an instant the
     /// shadow shares.
     pub error_estimate: Option<ErrorEstimate>,
-    /// Set on the one frame at which the tip estimate first passed the tolerance.
-    pub tolerance_exceeded: bool,
+    /// On the first frame at or after the instant the tip estimate first passed the
+    /// tolerance (watched at every step the run shares with its shadow, frames or none): that
+    /// instant and the estimate there.
+    pub tolerance_exceeded: Option<Exceeded>,
     /// In a run of several methods side by side: which one this frame is of, and how far its
     /// string is from the most accurate one's. `None` in a run of one method.
     pub lane: Option<Lane>,
     /// What the scene's theory predicts of this frame's motion, beside the measurement
     /// ([`Scene::theory`]); empty for a scene without one.
     pub theory: Vec<crate::model::theory::Comparison>,
+}
+
+/// The instant a run's tip estimate first passed its tolerance.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Exceeded {
+    pub step: u64,
+    pub time: f64,
+    /// The tip's first-order bound there, which passed the tolerance.
+    pub estimate: f64,
 }
 
 /// A frame's place in a run of several methods side by side.
@@ -257,7 +275,7 @@ pub fn frame(method: &mut dyn Method, obs: &mut Observation, base: EnergyBase) -
         constraint_residual: method.constraint_residual(),
         velocity_residual: method.velocity_residual(),
         error_estimate: None,
-        tolerance_exceeded: false,
+        tolerance_exceeded: None,
         lane: None,
         theory: Vec::new(),
     }
@@ -284,8 +302,10 @@ pub struct Shadowed {
     pub diverged: Option<Diverged>,
     /// Why the shadow stopped before the run, if it did.
     pub lost: Option<Diverged>,
-    /// The largest live tip estimate over the frames.
+    /// The largest live tip estimate at any step the run shares with its shadow.
     pub max_tip: Option<f64>,
+    /// The largest first-order bound there: what a tolerance is held to.
+    pub max_tip_bound: Option<f64>,
 }
 
 /// `method` from `scene` at N = `segments` and step `dt`, with its shadow at N/2, to
@@ -329,7 +349,8 @@ pub fn run_shadowed(
         refused: None,
         diverged: outcome.diverged,
         lost: outcome.estimate.as_ref().and_then(|e| e.lost.clone()),
-        max_tip: outcome.estimate.map(|e| e.max_tip),
+        max_tip: outcome.estimate.as_ref().map(|e| e.max_tip),
+        max_tip_bound: outcome.estimate.map(|e| e.max_tip_bound),
     }
 }
 
@@ -380,13 +401,19 @@ pub fn run_watched(
     let mut trusted_support = method.support();
     let logging = options.log_rate > 0.0;
     let mut next_frame = 0;
+    // The instant the tolerance was passed, until a frame carries it.
+    let mut exceeded = None;
     loop {
         let step = method.steps();
+        if let Some(watch) = estimating.as_mut() {
+            exceeded = exceeded.or(watch_tip(method, watch, &mut outcome));
+        }
         let at_frame = frame_step(next_frame, options, dt, stride).min(total_steps);
         if logging && at_frame <= step {
             let mut f = frame(method, &mut obs, base);
             if let Some(watch) = estimating.as_mut() {
                 estimate(watch, &mut f, &mut outcome);
+                f.tolerance_exceeded = exceeded.take();
             }
             outcome.frames += 1;
             // Frames closer together than a step (log rate above 1/k) share this one.
@@ -442,28 +469,50 @@ fn tip_in_the_room(support: Option<SupportNow>, angles: &[f64], lengths: Option<
     tip[0]
 }
 
-/// Puts the live error estimate into frame `f`, and what it says into `outcome`.
+/// At a step the run shares with its shadow, the tip's live estimate, what it says put into
+/// `outcome`; the instant it first passed the tolerance, if that is this step.
+fn watch_tip(
+    method: &dyn Method,
+    watch: &mut Watch<'_>,
+    outcome: &mut Outcome,
+) -> Option<Exceeded> {
+    let step = method.steps();
+    let said = outcome.estimate.as_mut()?;
+    if said.lost.is_some() || !step.is_multiple_of(STRIDE) {
+        return None;
+    }
+    let tip = tip_in_the_room(method.support(), method.angles(), method.lengths());
+    let Some(e) = watch.shadow.tip_estimate(step, tip) else {
+        said.lost = watch.shadow.lost().cloned();
+        return None;
+    };
+    let time = method.time();
+    if e.estimate > said.max_tip {
+        said.max_tip = e.estimate;
+        said.max_tip_time = time;
+    }
+    said.max_tip_bound = said.max_tip_bound.max(e.bound);
+    said.final_tip = Some(e.estimate);
+    let eps = watch.tolerance?;
+    (e.bound > eps && outcome.tolerance_exceeded_at.is_none()).then(|| {
+        outcome.tolerance_exceeded_at = Some(time);
+        Exceeded {
+            step,
+            time,
+            estimate: e.bound,
+        }
+    })
+}
+
+/// Puts the live error estimate into frame `f` (its tip's and its shape's), the shape's into
+/// `outcome`.
 fn estimate(watch: &mut Watch<'_>, f: &mut Frame, outcome: &mut Outcome) {
     let Some(said) = outcome.estimate.as_mut() else {
         return;
     };
     f.error_estimate = watch.shadow.estimate(f.step, &f.nodes, f.edges.as_deref());
     match f.error_estimate {
-        Some(e) => {
-            if e.tip > said.max_tip {
-                said.max_tip = e.tip;
-                said.max_tip_time = f.time;
-            }
-            said.max_shape = said.max_shape.max(e.shape);
-            said.final_tip = Some(e.tip);
-            if let Some(eps) = watch.tolerance
-                && e.tip > eps
-                && outcome.tolerance_exceeded_at.is_none()
-            {
-                outcome.tolerance_exceeded_at = Some(f.time);
-                f.tolerance_exceeded = true;
-            }
-        }
+        Some(e) => said.max_shape = said.max_shape.max(e.shape),
         None => said.lost = said.lost.take().or_else(|| watch.shadow.lost().cloned()),
     }
 }

@@ -416,7 +416,9 @@ impl Summary {
                     "  tolerance {eps:.1e}: NOT met, the estimated tip error passed it at t = {t:.3}\n"
                 ),
                 (Some(true), None) => {
-                    format!("  tolerance {eps:.1e}: met (by the estimate, at every frame)\n")
+                    format!(
+                        "  tolerance {eps:.1e}: met (by the estimate, at every step the run shares with its shadow)\n"
+                    )
                 }
                 _ => format!("  tolerance {eps:.1e}: unknown, the estimate was lost\n"),
             };

@@ -10,7 +10,8 @@ use crate::model::scene::FOLD_RODS_ACROSS_GAP;
 use crate::plan::Planned;
 use crate::plan::pilot::{self, Basis, Pilots};
 use crate::run::config::{short_step, trimmed_fixed};
-use crate::run::{Frame, RunPlan, cost};
+use crate::run::simulate::Exceeded;
+use crate::run::{RunPlan, cost};
 use std::sync::{Mutex, PoisonError};
 
 /// The relative energy deviation past which a run is told which method keeps the energy.
@@ -145,6 +146,8 @@ pub struct Asked {
     pub tolerance: Option<f64>,
     /// Whether `--dt` was given.
     pub dt_given: bool,
+    /// `--log-rate`, if given.
+    pub log_rate: Option<f64>,
     /// The method, when it is a default the run announces, and why it is.
     pub default_method: Option<(MethodKind, DefaultMethod)>,
 }
@@ -191,6 +194,15 @@ pub fn announce(asked: &Asked, plans: &[Planned]) -> Vec<Notice> {
                 plan.cost.seconds
             ),
         ));
+        if let Some(rate) = asked.log_rate.filter(|&rate| rate > plan.log_rate) {
+            notices.push(Notice::new(
+                Topic::ToleranceChoice,
+                format!(
+                    "rope: --log-rate {rate} asks more frames than the chosen step takes; a frame at every step instead ({} a time unit). The tolerance is watched at every step whatever the frames",
+                    trimmed_fixed(plan.log_rate, 1)
+                ),
+            ));
+        }
     }
     for Planned { plan, .. } in plans {
         if let Some(notice) = coarse_bend(plan) {
@@ -431,13 +443,13 @@ pub fn energy_hint(method: MethodKind, deviation: f64) -> Option<Notice> {
 }
 
 /// What a run says, once, when its error estimate passes the tolerance.
-pub fn tolerance_exceeded(plan: &RunPlan, frame: &Frame) -> Notice {
+pub fn tolerance_exceeded(plan: &RunPlan, passed: Exceeded) -> Notice {
     Notice::new(
         Topic::ToleranceExceeded,
         format!(
-            "rope: at t = {:.3} the estimated tip error {:.1e} passed the tolerance {:.1e} (N = {}); the run goes on; its summary says tolerance_met: false, and it exits with status 4",
-            frame.time,
-            frame.error_estimate.map_or(f64::NAN, |e| e.tip),
+            "rope: at t = {:.4} the estimated tip error (its first-order bound) {:.1e} passed the tolerance {:.1e} (N = {}); the run goes on; its summary says tolerance_met: false, and it exits with status 4",
+            passed.time,
+            passed.estimate,
             plan.tolerance.unwrap_or(f64::NAN),
             plan.segments
         ),

@@ -41,6 +41,7 @@ pub fn run(args: &RunArgs, session: &Session) -> Result<Outcome, ServiceError> {
     let asked = notices::Asked {
         tolerance: args.tolerance,
         dt_given: args.dt.is_some(),
+        log_rate: args.log_rate,
         default_method: args.default_method().map(|why| (args.method(), why)),
     };
     notices::announce(&asked, &plans).into_iter().for_each(tell);
@@ -249,8 +250,8 @@ fn run_passes(
             let progress = Progress::new(plan.duration);
             let on_frame = |frame: &crate::run::Frame| {
                 progress.at(frame.time);
-                if frame.tolerance_exceeded {
-                    let notice = notices::tolerance_exceeded(plan, frame);
+                if let Some(passed) = frame.tolerance_exceeded {
+                    let notice = notices::tolerance_exceeded(plan, passed);
                     // Above the progress bar, where the terminal draws one.
                     progress.suspend(|| session.listener.tell(notice));
                 }

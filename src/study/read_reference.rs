@@ -6,8 +6,8 @@
 //! check, read or computed.
 
 use super::tip_reference::{
-    ConvergedTip, LOG_RATE, REFERENCE_RATE, REFERENCE_ROWS_RATE, REFERENCES_HEADER as HEADER,
-    TipReference, csv_field,
+    ConvergedTip, JUDGE_RATE, LOG_RATE, REFERENCE_RATE, REFERENCE_ROWS_RATE,
+    REFERENCES_HEADER as HEADER, TipReference, csv_field,
 };
 use crate::error::ConfigError;
 use crate::model::{Point, Scene};
@@ -23,7 +23,8 @@ pub struct ReadReference {
     pub rate: f64,
     /// The tip and its own error at each row.
     rows: Vec<(Point, f64)>,
-    /// The largest own error at the frames ([`LOG_RATE`] a time unit) to the duration read for.
+    /// The largest own error at every row (1/[`JUDGE_RATE`] of a time unit) to the duration
+    /// read for.
     pub own_error: f64,
 }
 
@@ -192,7 +193,7 @@ fn checked(
         rows: rows.iter().map(|&(_, tip, own)| (tip, own)).collect(),
         own_error: 0.0,
     };
-    reference.own_error = reference.own_error_over(duration, LOG_RATE);
+    reference.own_error = reference.own_error_over(duration, JUDGE_RATE);
     Ok(reference)
 }
 

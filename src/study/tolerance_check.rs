@@ -6,10 +6,12 @@
 //! computed, or read back from a references file where one can judge the check's smallest EPS.
 
 use super::read_reference::{CheckReference, ReadReference};
+pub use super::tip_reference::JUDGE_RATE;
 pub use super::tip_reference::LOG_RATE;
 use super::tip_reference::{ConvergedTip, REFERENCE_RATE, REFERENCE_ROWS_RATE, TipReference};
-use crate::methods::MethodKind;
-use crate::model::{Point, Scene};
+use super::trajectory::{Trajectory, frame_times};
+use crate::methods::{MethodKind, whole_division};
+use crate::model::Scene;
 use crate::plan::atlas::ATLAS_ANGLES;
 use crate::plan::pilot;
 use crate::plan::tolerance;
@@ -98,7 +100,8 @@ impl CheckSpec {
     }
 
     /// The small check CI runs: the release from 30° and mode 1 at EPS = 1e-2, against the
-    /// chain extrapolated from N = 100, 200 and 400.
+    /// reference method extrapolated from N = 400, 800 and 1600 (from N = 200, 400 and 800 the
+    /// release's own error at every instant is 1.0e-3, too coarse to judge 1e-2).
     pub fn quick() -> Self {
         Self {
             scenes: vec![
@@ -110,9 +113,9 @@ impl CheckSpec {
             ],
             tolerances: vec![1e-2],
             duration: 3.0,
-            reference_segments: 200,
-            reference_segments_max: 200,
-            reference_segments_reach: 200,
+            reference_segments: 800,
+            reference_segments_max: 800,
+            reference_segments_reach: 800,
             grid: vec![16, 25, 32, 50, 64, 100],
             grid_beyond: Vec::new(),
         }
@@ -137,8 +140,12 @@ pub struct Measured {
     pub method: MethodKind,
     pub segments: usize,
     pub dt: f64,
-    /// The largest distance of the tip from the reference's over the frames.
+    /// The largest distance of the tip from the reference's at every 1/[`JUDGE_RATE`] of a
+    /// time unit: at every instant, whatever the frames.
     pub worst: f64,
+    /// For a run with its shadow: the largest first-order bound of its live tip estimate, at
+    /// every step the two share (what the run's verdict reads).
+    pub estimate: Option<f64>,
     /// Wall seconds of one thread.
     pub seconds: f64,
 }
@@ -165,6 +172,21 @@ impl Cell {
         self.chosen.map(|c| c.worst <= self.tolerance)
     }
 
+    /// What the chosen run's live estimate said of EPS against the truth, both at every
+    /// instant.
+    pub fn verdict(&self) -> Option<EstimateVerdict> {
+        let chosen = self.chosen?;
+        let said = chosen.estimate? > self.tolerance;
+        let (eps, truth) = (self.tolerance, chosen.worst);
+        Some(match (truth > eps, said) {
+            (true, true) => EstimateVerdict::MissSaid,
+            (true, false) => EstimateVerdict::MissSilent,
+            (false, true) if truth > eps / 2.0 => EstimateVerdict::FalseAlarmNear,
+            (false, true) => EstimateVerdict::FalseAlarm,
+            (false, false) => EstimateVerdict::HeldSaid,
+        })
+    }
+
     /// The chosen run's CPU, pilots included, over the grid's cheapest.
     pub fn cpu_ratio(&self) -> Option<f64> {
         let (chosen, cheapest) = (self.chosen?, self.cheapest?);
@@ -172,9 +194,46 @@ impl Cell {
     }
 }
 
+/// What a run's verdict (its exit status: 4 where its live estimate passed EPS) said, against
+/// the truth at every instant.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EstimateVerdict {
+    /// EPS held, and the run said so.
+    HeldSaid,
+    /// EPS missed, and the run said so.
+    MissSaid,
+    /// EPS missed, and the run said it held: a verdict that lied.
+    MissSilent,
+    /// EPS held, the run said it did not, and the truth was above EPS/2: allowed.
+    FalseAlarmNear,
+    /// EPS held within EPS/2, and the run said it did not: a verdict that lied.
+    FalseAlarm,
+}
+
+impl EstimateVerdict {
+    /// Whether the verdict told the truth (a false alarm above EPS/2 is allowed).
+    pub fn truthful(self) -> bool {
+        !matches!(self, Self::MissSilent | Self::FalseAlarm)
+    }
+
+    /// A few words for the table.
+    pub fn label(self) -> &'static str {
+        match self {
+            Self::HeldSaid => "held, said",
+            Self::MissSaid => "missed, said",
+            Self::MissSilent => "**missed, silent**",
+            Self::FalseAlarmNear => "false alarm above EPS/2",
+            Self::FalseAlarm => "**false alarm**",
+        }
+    }
+}
+
 /// Runs `method` at N = `segments` and step `dt` from `scene`, its shadow with it if
-/// `shadowed`, and measures it against `reference`; `None` if it could not start or
-/// diverged.
+/// `shadowed`, and measures it against `reference` at every 1/[`JUDGE_RATE`] of a time unit;
+/// `None` if it could not start or diverged. Its seconds are those of the run `rope run`
+/// makes, frames at [`LOG_RATE`]; its tip is kept in a second run, untimed, at
+/// [`judging_step`]: a cubic through the run's own steps misses a whip's tip by up to 1.4e-4
+/// (from 20°, the graded rods at N = 800), more than the tolerances it would judge.
 pub fn measure(
     method: MethodKind,
     scene: &Scene,
@@ -189,30 +248,45 @@ pub fn measure(
         log_rate: LOG_RATE,
         frame_grid: None,
     };
-    let mut worst: f64 = 0.0;
-    let mut on_frame = |tip: Point, t: f64| worst = worst.max((tip - reference.tip_at(t)).norm());
     let started = Instant::now();
-    let stopped = if shadowed {
-        let run = simulate::run_shadowed(method, scene, segments, dt, &options, |f| {
-            on_frame(f.tip(), f.time)
-        });
-        run.refused.is_some() || run.diverged.is_some()
+    let (stopped, estimate) = if shadowed {
+        let run = simulate::run_shadowed(method, scene, segments, dt, &options, |_| {});
+        (
+            run.refused.is_some() || run.diverged.is_some(),
+            run.max_tip_bound,
+        )
     } else {
         let mut run = method.build(scene, segments, dt).ok()?;
-        let outcome = simulate::run(run.as_mut(), &options, None, |f| {
-            on_frame(f.tip(), f.time);
-            ControlFlow::Continue(())
-        });
-        outcome.diverged.is_some()
+        let outcome = simulate::run(run.as_mut(), &options, None, |_| ControlFlow::Continue(()));
+        (outcome.diverged.is_some(), None)
     };
     let seconds = started.elapsed().as_secs_f64();
-    (!stopped).then_some(Measured {
+    if stopped {
+        return None;
+    }
+    let kept = Trajectory::keep(scene, method, segments, judging_step(dt), duration).ok()?;
+    let worst = frame_times(duration, JUDGE_RATE)
+        .into_iter()
+        .map(|t| (kept.trajectory.at(t) - reference.tip_at(t)).norm())
+        .fold(0.0, f64::max);
+    Some(Measured {
         method,
         segments,
         dt,
         worst,
+        estimate,
         seconds,
     })
+}
+
+/// The step a run of step `dt` is judged at: the largest at most `dt` that puts a step on
+/// every 1/[`JUDGE_RATE`], where the reference has its rows, so that the run's tip is read at
+/// its own steps and nowhere between. The same method at N with a step at most `dt` differs
+/// from the run at `dt` by its error in k alone, which `--tolerance`'s steps keep far below
+/// its error in h: at the steps they share, within 1.2e-6 from 20° at N = 800 (`cargo run
+/// --release --example judging_step`).
+pub fn judging_step(dt: f64) -> f64 {
+    whole_division(1.0 / JUDGE_RATE, dt)
 }
 
 /// The method the check's reference of `scene` to `duration` is made of: the graded rods
@@ -370,7 +444,7 @@ pub fn check(
                 continue;
             }
             let started = Instant::now();
-            match pilot::choose(eps, scene, spec.duration, LOG_RATE, u64::MAX) {
+            match pilot::choose(eps, scene, spec.duration, u64::MAX) {
                 Ok((choice, flown)) => {
                     cell.pilot_seconds = started.elapsed().as_secs_f64();
                     cell.basis = Some(flown.basis);
@@ -392,7 +466,8 @@ pub fn markdown(spec: &CheckSpec, checked: &Checked, command: &str) -> String {
         "# `--tolerance` against the truth\n\n`{command}`\n\n\
          For each scene and EPS, the run `rope run --tolerance EPS --duration {}` makes (its \
          pilots, then the chosen method, N and k with its shadow at N/2) is compared at every \
-         frame ({LOG_RATE} per time unit) with the tip of a reference: the {} method (the graded \
+         1/{JUDGE_RATE} of a time unit (its tip kept at every step, whatever its frames) with \
+         the tip of a reference: the {} method (the graded \
          rods where their end rods do not spin on, a release from 20° up: their tip converges \
          faster through the whip) at N/2, N and 2N, extrapolated in N at the order the three show, N doubled from {} (up to {}, \
          and on up to {} where the order the runs show, or 2 if less, would reach it) until the \
@@ -403,17 +478,18 @@ pub fn markdown(spec: &CheckSpec, checked: &Checked, command: &str) -> String {
          smallest EPS and none costs less than the cheapest that holds; where none holds the smallest EPS the \
          reference can judge, on at N = {:?} up to the first N where one does) whose largest \
          error also holds EPS. A \
-         tolerance is checked only where the reference's own error at the frames is at most \
-         {REFERENCE_MARGIN} × EPS. Where `--references` gave a scene's reference whose own \
-         error at the frames is at most {REFERENCE_MARGIN} × the smallest EPS, it is read \
-         instead of computed, at its rows (every frame is one): the method column names its \
-         file.\n\n## References\n\n\
+         tolerance is checked only where the reference's own error at every 1/{JUDGE_RATE} is \
+         at most {REFERENCE_MARGIN} × EPS. Where `--references` gave a scene's reference whose \
+         own error is at most {REFERENCE_MARGIN} × the smallest EPS, it is read instead of \
+         computed, at its rows: the method column names its file. The verdict is what the \
+         run's exit status would say (4 where its live estimate, at every step it shares with \
+         its shadow, passed EPS) against the truth: a miss it did not say, or a false alarm \
+         where the truth held within EPS/2, is a verdict that lied.\n\n## References\n\n\
          Each reference's own error is measured: how far its tip moves when it is extrapolated \
-         from N and 2N rather than from N/2 and N, at the frames the choices are judged at, and \
-         at every 1/{REFERENCE_RATE} of a time unit, which also sees between them (a whip's \
-         peak is brief). `references.csv` gives each reference's tip and own error at every \
+         from N and 2N rather than from N/2 and N, at every 1/{JUDGE_RATE} of a time unit (the \
+         instants the choices are judged at), and at every 1/{REFERENCE_RATE}. `references.csv` gives each reference's tip and own error at every \
          1/{REFERENCE_ROWS_RATE} (every frame and every 1/{REFERENCE_RATE}).\n\n\
-         | scene | method | N (runs at N/2, N, 2N) | observed order | own error at the frames | at every 1/{REFERENCE_RATE} |\n|---|---|---|---|---|---|\n",
+         | scene | method | N (runs at N/2, N, 2N) | observed order | own error at every 1/{JUDGE_RATE} | at every 1/{REFERENCE_RATE} |\n|---|---|---|---|---|---|\n",
         spec.duration,
         MethodKind::REFERENCE,
         spec.reference_segments,
@@ -431,13 +507,13 @@ pub fn markdown(spec: &CheckSpec, checked: &Checked, command: &str) -> String {
             r.own_error_over(spec.duration, REFERENCE_RATE)
         );
     }
-    text += "\n## Choices\n\n| scene | EPS | chosen (from) | true worst error | held | CPU s (pilots + run) | grid's cheapest holding EPS | its worst error | its CPU s | ratio | notes |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+    text += "\n## Choices\n\n| scene | EPS | chosen (from) | true worst error | held | live estimate at worst | verdict | CPU s (pilots + run) | grid's cheapest holding EPS | its worst error | its CPU s | ratio | notes |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     let run = |m: &Measured| format!("{} N = {}, k = {:.1e}", m.method, m.segments, m.dt);
     for c in &checked.cells {
         let chosen = c.chosen.as_ref();
         let cheapest = c.cheapest.as_ref();
         text += &format!(
-            "| {} | {:.0e} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
+            "| {} | {:.0e} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
             c.scene,
             c.tolerance,
             chosen.map_or("–".to_owned(), |m| format!(
@@ -451,6 +527,10 @@ pub fn markdown(spec: &CheckSpec, checked: &Checked, command: &str) -> String {
                 Some(false) => "**no**",
                 None => "–",
             },
+            chosen
+                .and_then(|m| m.estimate)
+                .map_or("–".to_owned(), |e| format!("{e:.1e}")),
+            c.verdict().map_or("–", EstimateVerdict::label),
             chosen.map_or("–".to_owned(), |m| format!(
                 "{:.3} + {:.3}",
                 c.pilot_seconds, m.seconds
