@@ -4,20 +4,36 @@
 //! its live estimate (watched at every step the run shares with its shadow) said, and so the
 //! exit status the run would end with.
 //!
-//! `cargo run --release --example tolerance_instants -- [EPS,EPS…] [ANGLE,ANGLE…]`: by default
-//! the fourteen runs of issue 61, 20° to 80° at 1e-3 and 1e-4, to t = 3, against
-//! `assets/tolerance-check/references.csv`. Prints a Markdown table.
+//! A second table says why the run is judged at `judging_step` and not read between its own
+//! steps: how far its tip moves when its step is made finer (the run at k and at k/6, compared
+//! at every step of k: its error in k, which bounds what judging it at a step at most k can
+//! change), and how far a cubic through its own steps misses its tip between them (against
+//! the run at k/6 at its own step nearest each 1/3 000).
+//!
+//! `cargo run --release --example tolerance_instants -- [EPS,EPS…] [ANGLE,ANGLE…] [DURATION]`:
+//! by default the fourteen runs of issue 61, 20° to 80° at 1e-3 and 1e-4, to t = 3, against
+//! `assets/tolerance-check/references.csv`. Past t = 3 (where those end) each angle's
+//! reference is computed as the tolerance check computes one, refined towards an own error of
+//! 1e-5 by one doubling at most (runs up to N = 6400: minutes an angle). Prints the two tables
+//! in Markdown.
 
 use rope::model::Scene;
 use rope::plan::pilot;
-use rope::study::read_reference::read_all;
-use rope::study::tip_reference::{ConvergedTip, LOG_RATE};
-use rope::study::tolerance_check::{Cell, JUDGE_RATE, measure};
+use rope::study::read_reference::{CheckReference, read_all};
+use rope::study::tip_reference::{ConvergedTip, LOG_RATE, TipReference};
+use rope::study::tolerance_check::{Cell, JUDGE_RATE, measure, reference_method};
 use rope::study::trajectory::{Trajectory, frame_times};
 use std::path::PathBuf;
 use std::time::Instant;
 
-const DURATION: f64 = 3.0;
+/// The references file read where it reaches the run's duration.
+const REFERENCES: &str = "assets/tolerance-check/references.csv";
+
+/// How far [`REFERENCES`] reach.
+const DURATION_READ: f64 = 3.0;
+
+/// How many times finer the step of the run the chosen one is held against in the second table.
+const FINER: usize = 6;
 
 fn list(arg: Option<String>, default: &[f64]) -> anyhow::Result<Vec<f64>> {
     match arg {
@@ -37,27 +53,50 @@ fn main() -> anyhow::Result<()> {
         .iter()
         .map(|&angle_deg| Scene::Release { angle_deg })
         .collect();
-    let path = PathBuf::from("assets/tolerance-check/references.csv");
-    let read = read_all(&[path], &scenes, DURATION)?;
+    let duration = match args.next() {
+        Some(text) => text.parse().map_err(|e| anyhow::anyhow!("{text:?}: {e}"))?,
+        None => 3.0,
+    };
+    let references: Vec<CheckReference> = if duration <= DURATION_READ {
+        read_all(&[PathBuf::from(REFERENCES)], &scenes, duration)?
+            .into_iter()
+            .map(CheckReference::Read)
+            .collect()
+    } else {
+        scenes
+            .iter()
+            .map(|scene| {
+                let method = reference_method(scene, duration);
+                let r = TipReference::refined_by(method, scene, 1600, 3200, 1e-5, duration)?;
+                eprintln!(
+                    "{scene}: reference of the {method} method, N = {} (order {:.2}), own error {:.1e} at every 1/{JUDGE_RATE}",
+                    r.segments, r.order, r.own_error
+                );
+                Ok(CheckReference::Computed(r))
+            })
+            .collect::<anyhow::Result<_>>()?
+    };
     println!(
-        "| angle | EPS | choice (from) | worst / EPS at every 1/{JUDGE_RATE} | at the frames ({LOG_RATE} a unit) | live estimate's first-order bound / EPS | at the nominal order | exit | verdict | CPU s, pilots + run |\n|---|---|---|---|---|---|---|---|---|---|"
+        "| angle | EPS | choice (from) | worst / EPS at every instant | at the frames ({LOG_RATE} a unit) | live estimate's first-order bound / EPS | at the nominal order | exit | verdict | CPU s, pilots + run |\n|---|---|---|---|---|---|---|---|---|---|"
     );
+    let mut chosen_runs = Vec::new();
     for &eps in &tolerances {
         for scene in &scenes {
-            let Some(reference) = read.iter().find(|r| r.scene == *scene) else {
+            let Some(reference) = references.iter().find(|r| r.scene() == *scene) else {
                 println!("| {scene} | {eps:.0e} | no reference | | | | | | | |");
                 continue;
             };
             let started = Instant::now();
-            let (choice, pilots) = pilot::choose(eps, scene, DURATION, u64::MAX)?;
+            let (choice, pilots) = pilot::choose(eps, scene, duration, u64::MAX)?;
             let pilot_seconds = started.elapsed().as_secs_f64();
             let (m, n, dt) = (choice.method, choice.segments, choice.dt);
-            let Some(chosen) = measure(m, scene, n, dt, DURATION, true, reference) else {
+            chosen_runs.push((*scene, eps, m, n, dt));
+            let Some(chosen) = measure(m, scene, n, dt, duration, true, reference) else {
                 println!("| {scene} | {eps:.0e} | {m} N = {n} diverged | | | | | | | |");
                 continue;
             };
-            let kept = Trajectory::keep(scene, m, n, dt, DURATION)?;
-            let at_frames = frame_times(DURATION, LOG_RATE)
+            let kept = Trajectory::keep(scene, m, n, dt, duration)?;
+            let at_frames = frame_times(duration, LOG_RATE)
                 .into_iter()
                 .map(|t| (kept.trajectory.at(t) - reference.tip_at(t)).norm())
                 .fold(0.0, f64::max);
@@ -86,6 +125,27 @@ fn main() -> anyhow::Result<()> {
                 chosen.seconds,
             );
         }
+    }
+    println!(
+        "\n| angle | EPS | choice | at k against k/{FINER}, at every step of k | a cubic through the steps of k, against k/{FINER} |\n|---|---|---|---|---|"
+    );
+    for (scene, eps, m, n, dt) in chosen_runs {
+        let run = Trajectory::keep(&scene, m, n, dt, duration)?.trajectory;
+        let finer = Trajectory::keep(&scene, m, n, dt / FINER as f64, duration)?.trajectory;
+        let steps = (duration / dt).round() as usize;
+        let at_steps = (0..=steps)
+            .map(|i| (run.tips()[i] - finer.tips()[FINER * i]).norm())
+            .fold(0.0, f64::max);
+        let between = frame_times(duration, JUDGE_RATE)
+            .into_iter()
+            .map(|t| {
+                let j = (t / finer.dt()).round() as usize;
+                (run.at(j as f64 * finer.dt()) - finer.tips()[j]).norm()
+            })
+            .fold(0.0, f64::max);
+        println!(
+            "| {scene} | {eps:.0e} | {m} N = {n}, k = {dt:.2e} | {at_steps:.1e} | {between:.1e} |"
+        );
     }
     Ok(())
 }

@@ -1,25 +1,18 @@
 #!/usr/bin/env bash
-# The release atlas `--tolerance` reads for a release run to t ≤ 3: the worst tip error of the
-# rods (the chain at its tolerance step) per release angle (0°, 10°, …, 90°, and the held-out
-# 5°, 15°, …, 85°) and N = 16 … 566, against the tolerance check's reference read from
-# assets/tolerance-check/references.csv where it can judge 1e-4 (from 10° to 90°), else
-# computed as the check computes one (the graded rods from 20° up, else the chain) from
-# N = 800, 1600, 3200 (from 1600, 3200, 6400 where the first errs by more than 3e-6), and
-# below 20°, where no other rods may be chosen, on to N = 1131, and to 3200 where the
-# reference could judge 1e-4 (from 10°).
+# The release atlas `--tolerance` reads for a release run to t ≤ 3: the worst tip error, at
+# every 1/3000 of a time unit, of the rods (the chain at its tolerance step) per release angle
+# (0°, 10°, …, 90°, and the held-out 5°, 15°, …, 85°) and N = 16 … 566, against the tolerance
+# check's references read from assets/tolerance-check/references.csv (0° to 90°), else (the
+# held-out angles) computed as the check computes one (the graded rods from 20° up, else the
+# chain) from N = 800, 1600, 3200, or from 1600, 3200, 6400 where the first errs by more than
+# 3e-6; below 20°, where no other rods may be chosen, on to N = 1131.
 # Writes assets/release-atlas/atlas.csv (read at build time: rebuild afterwards) and its chart,
-# atlas.png and atlas.svg. The committed one took 21 min 22 s of wall on 2 cores, 2 477 s of
-# CPU, with ROPE_RUN_CACHE=DIR holding 0°'s reference runs; again with every reference run
-# kept, 53 s.
+# atlas.png and atlas.svg. With ROPE_RUN_CACHE=DIR the references' runs are kept and shared
+# with the graded atlas: see docs/measurements.md for the time it took.
 #
 # `scripts/release-atlas.sh graded`: the same of the graded rods (`--method graded`) from 20°
-# up to N = 1131, the references read as above where they can judge 1e-4, else the graded rods
-# extrapolated from N = 800, 1600, 3200, or from 1600, 3200, 6400 where the first errs by more
-# than 3e-6, and once more (runs up to N = 12 800) where the reference still keeps out an entry
-# the atlas needs (an atlas angle's, or a held-out angle's that could set the margin); writes
-# assets/release-atlas/graded-atlas.csv and graded-atlas.png and .svg. About two hours on 2
-# cores (an estimate from the five runs that measured the committed rows, all against computed
-# references, before the script read any: docs/measurements.md).
+# up to N = 1600, the references read as above, else computed as above (refined once at most);
+# writes assets/release-atlas/graded-atlas.csv and graded-atlas.png and .svg.
 #
 # `scripts/release-atlas.sh graded --until 5`: the graded rods' worst tip error to t = 5 from
 # 40° up (below it their end rods spin after a second whip), which `--tolerance` reads for a
@@ -45,12 +38,16 @@ case "$rods" in
 esac
 mkdir -p assets/release-atlas
 csv="assets/release-atlas/$name.csv"
-# The tolerance check's committed references (every atlas angle's), read where they can judge
-# 1e-4 instead of computed; a reference to t = 5 is computed (they end at t = 3).
+# The tolerance check's committed references (every atlas angle's), read instead of computed
+# (--read-any: at every 1/3000 they err by up to 2.1e-5 from 50° to 80°, where one computed
+# here from runs up to N = 6400 errs by up to 5.9e-5); a reference to t = 5 is computed (they
+# end at t = 3). The graded rods' computed references (the held-out angles') are refined once
+# (runs up to N = 6400), and their rows measured to N = 1600.
 references=""
 case "$rods" in
     *--until*) ;;
-    *) references="--references assets/tolerance-check/references.csv" ;;
+    graded) references="--read-any --refine-once --to 1600 --references assets/tolerance-check/references.csv" ;;
+    *) references="--read-any --references assets/tolerance-check/references.csv" ;;
 esac
 cargo run --release --locked --quiet --example release_atlas -- $rods $references > "$csv.new"
 if [ -n "$add" ]; then

@@ -188,12 +188,15 @@ fn a_check_that_reads_its_references_back_judges_every_run_as_the_one_that_compu
         );
     }
     assert!((before.own_error() - after.own_error()).abs() <= 0.05 * before.own_error());
-    // The same runs, measured against either, err alike.
+    // The same runs, measured against either, err alike: against the computed reference at
+    // every one of their own steps, against the file at every row, kept at a step on the rows
+    // (`judging_step`: k = 1/3000 for the seed scheme's k = 1e-2 at N = 16, the choice here),
+    // which moves the tip by its error in k alone (3.5 % of the worst error here).
     let (one, two) = (&computed.cells[0], &again.cells[0]);
     let (a, b) = (one.chosen.unwrap(), two.chosen.unwrap());
     assert_eq!((a.method, a.segments, a.dt), (b.method, b.segments, b.dt));
     assert!(
-        (a.worst - b.worst).abs() < 2e-9,
+        (a.worst - b.worst).abs() < 0.05 * a.worst,
         "{} against {}",
         a.worst,
         b.worst

@@ -49,6 +49,10 @@ impl ConvergedTip for ReadReference {
     fn own_error_at(&self, t: f64) -> f64 {
         self.row(t).1
     }
+
+    fn rows_only(&self) -> bool {
+        true
+    }
 }
 
 /// Every reference that `paths` hold of one of `scenes`, each checked to serve a check to
@@ -251,6 +255,10 @@ impl ConvergedTip for CheckReference {
             Self::Read(r) => r.own_error_at(t),
             Self::Computed(r) => r.own_error_at(t),
         }
+    }
+
+    fn rows_only(&self) -> bool {
+        matches!(self, Self::Read(_))
     }
 }
 

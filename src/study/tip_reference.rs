@@ -32,6 +32,14 @@ pub trait ConvergedTip {
     /// How far [`ConvergedTip::tip_at`] may be from the truth at `t`, as measured.
     fn own_error_at(&self, t: f64) -> f64;
 
+    /// Whether it is known only at its rows (a references file, every 1/[`JUDGE_RATE`]): a
+    /// run is then judged there, at a step that falls on them. Otherwise it is read at any
+    /// instant (its runs' steps are far finer than a judged run's), and a run is judged at
+    /// every one of its own steps.
+    fn rows_only(&self) -> bool {
+        false
+    }
+
     /// The largest own error at `rate` instants a time unit to `duration`: at the frames
     /// ([`LOG_RATE`]) what judges a run's frames; finer, it also sees between them (a whip's
     /// peak is brief).

@@ -229,11 +229,13 @@ impl EstimateVerdict {
 }
 
 /// Runs `method` at N = `segments` and step `dt` from `scene`, its shadow with it if
-/// `shadowed`, and measures it against `reference` at every 1/[`JUDGE_RATE`] of a time unit;
-/// `None` if it could not start or diverged. Its seconds are those of the run `rope run`
-/// makes, frames at [`LOG_RATE`]; its tip is kept in a second run, untimed, at
-/// [`judging_step`]: a cubic through the run's own steps misses a whip's tip by up to 1.4e-4
-/// (from 20°, the graded rods at N = 800), more than the tolerances it would judge.
+/// `shadowed`, and measures it against `reference` at every instant: at every one of its own
+/// steps, or, against a reference known only at its rows ([`ConvergedTip::rows_only`], every
+/// 1/[`JUDGE_RATE`]), at every row, the run kept at [`judging_step`] (a cubic through the
+/// run's own steps misses a whip's tip by up to 2.9e-4 from 20°, the graded rods at N = 370,
+/// more than the tolerances it would judge). `None` if it could not start or diverged. Its
+/// seconds are those of the run `rope run` makes, frames at [`LOG_RATE`]; its tip is kept in
+/// a second run, untimed.
 pub fn measure(
     method: MethodKind,
     scene: &Scene,
@@ -264,8 +266,14 @@ pub fn measure(
     if stopped {
         return None;
     }
-    let kept = Trajectory::keep(scene, method, segments, judging_step(dt), duration).ok()?;
-    let worst = frame_times(duration, JUDGE_RATE)
+    // At every row of a reference known only there, the run kept at a step on them; else at
+    // every one of the run's own steps.
+    let (step, times) = match reference.rows_only() {
+        true => (judging_step(dt), frame_times(duration, JUDGE_RATE)),
+        false => (dt, frame_times(duration, 1.0 / dt)),
+    };
+    let kept = Trajectory::keep(scene, method, segments, step, duration).ok()?;
+    let worst = times
         .into_iter()
         .map(|t| (kept.trajectory.at(t) - reference.tip_at(t)).norm())
         .fold(0.0, f64::max);
@@ -283,8 +291,10 @@ pub fn measure(
 /// every 1/[`JUDGE_RATE`], where the reference has its rows, so that the run's tip is read at
 /// its own steps and nowhere between. The same method at N with a step at most `dt` differs
 /// from the run at `dt` by its error in k alone, which `--tolerance`'s steps keep far below
-/// its error in h: at the steps they share, within 1.2e-6 from 20° at N = 800 (`cargo run
-/// --release --example judging_step`).
+/// its error in h to t = 3: against the run at k/6, within 6.0e-6 from 20° to 80° (the
+/// second table of `cargo run --release --example tolerance_instants`). Not always past it:
+/// from 45° to t = 5 the graded rods at N = 400 differ by 5.1e-4, so a reference that can be
+/// read at any instant (computed, not read) judges a run at its own steps instead.
 pub fn judging_step(dt: f64) -> f64 {
     whole_division(1.0 / JUDGE_RATE, dt)
 }
