@@ -40,7 +40,8 @@ const RATE: f64 = 60.0;
 #[derive(Clone, Debug, PartialEq)]
 pub struct Pilot {
     pub method: MethodKind,
-    /// The largest live tip estimate over the frames, at each level flown.
+    /// The largest live tip estimate at every step the pilot shares with its shadow, at each
+    /// level flown.
     pub measured: Vec<(usize, f64)>,
     /// The scene's own error model for this method, fitted to `measured` after each level
     /// flown, its safety factor times [`SAFETY`]; `None` before its first pilot, or if one

@@ -209,7 +209,7 @@ pub enum CheckReference {
 }
 
 impl CheckReference {
-    /// Its largest own error at the frames.
+    /// Its largest own error at every row.
     pub fn own_error(&self) -> f64 {
         match self {
             Self::Read(r) => r.own_error,

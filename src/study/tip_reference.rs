@@ -1,6 +1,6 @@
 //! The converged tip of a scene that `rope study --tolerance-check` and the release atlas
 //! judge runs against: a method's runs at N/2, N and 2N, extrapolated in N at the order they
-//! show, with its own error measured at the frames and between them, and written out for
+//! show, with its own error measured at every 1/3 000 of a time unit, and written out for
 //! anyone to hold another solver against (`references.csv`); and [`ConvergedTip`], what a
 //! run is measured against, computed here or read back from such a file
 //! ([`read_reference`](super::read_reference)).

@@ -1,6 +1,6 @@
 //! `rope study --tolerance-check`: `--tolerance EPS` checked against the truth. For each scene
 //! and EPS, the run `rope run --tolerance EPS` would make (its pilots, then the chosen method,
-//! N and k with its shadow) is measured against a converged reference at every frame, and its
+//! N and k with its shadow) is measured against a converged reference at every instant, and its
 //! CPU, pilots included, set beside the cheapest run of a (method, N, k) grid, each method at
 //! its default step and at its tolerance step, that also holds EPS. A scene's reference is
 //! computed, or read back from a references file where one can judge the check's smallest EPS.
@@ -167,7 +167,7 @@ pub struct Cell {
 }
 
 impl Cell {
-    /// Whether the chosen run held EPS at every frame.
+    /// Whether the chosen run held EPS at every instant.
     pub fn held(&self) -> Option<bool> {
         self.chosen.map(|c| c.worst <= self.tolerance)
     }
@@ -328,7 +328,7 @@ impl CheckSpec {
     }
 }
 
-/// Of the references in `read` of `scene`, the one whose own error at the frames is least.
+/// Of the references in `read` of `scene`, the one whose own error (at every row) is least.
 pub fn best_read<'a>(read: &'a [ReadReference], scene: &Scene) -> Option<&'a ReadReference> {
     read.iter()
         .filter(|r| r.scene == *scene)
@@ -336,7 +336,7 @@ pub fn best_read<'a>(read: &'a [ReadReference], scene: &Scene) -> Option<&'a Rea
 }
 
 /// The reference of `read` the check takes for `scene` instead of computing one: the
-/// [`best_read`], where it can judge the smallest EPS (its own error at the frames at most
+/// [`best_read`], where it can judge the smallest EPS (its own error at every row at most
 /// [`REFERENCE_MARGIN`] × it).
 pub fn usable<'a>(
     spec: &CheckSpec,
