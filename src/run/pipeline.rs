@@ -6,7 +6,7 @@ use super::config::RunPlan;
 use super::simulate::{self, Frame, Options, Outcome, Watch};
 use super::sink::FrameSink;
 use super::summary::{Summary, TipSamples};
-use super::theory_figures::PullWindow;
+use super::theory_figures::{PullWindow, TheoryFigures};
 use crate::error::ConfigError;
 use crate::model::geometry;
 use crate::model::theory::Reading;
@@ -158,18 +158,34 @@ pub(super) fn simulate_and_send(
     let mut pull = PullWindow::default();
     let cpu = cpu_time::ThreadTime::now();
     let Simulation { method, watch } = simulation;
-    let outcome = simulate::run_watched(method, watch, &options, Some(stop), |mut frame| {
-        frame.theory = plan.scene.theory(&Reading {
-            time: frame.time,
-            initial_tip,
-            tip: frame.tip(),
-            tip_velocity: frame.tip_velocity,
-            support_tension: frame.support_tension,
-            momentum: frame.momentum,
-        });
+    let reading = |frame: &Frame| Reading {
+        time: frame.time,
+        initial_tip,
+        tip: frame.tip(),
+        tip_velocity: frame.tip_velocity,
+        support_tension: frame.support_tension,
+        momentum: frame.momentum,
+    };
+    // A scene whose summary quotes its theory at instants (the fold, at its falls) reads it
+    // at every step, so that what it quotes does not depend on the frames.
+    let base = simulate::EnergyBase::of(method);
+    let mut observation = crate::methods::Observation::default();
+    let quoted = TheoryFigures::quotes(&plan.scene.theory(&reading(&simulate::frame(
+        method,
+        &mut observation,
+        base,
+    ))));
+    let mut figures = TheoryFigures::default();
+    let on_step = |method: &mut dyn crate::methods::Method| {
+        if quoted {
+            let frame = simulate::frame(method, &mut observation, base);
+            figures.push(frame.time, &plan.scene.theory(&reading(&frame)));
+        }
+    };
+    let on_frame = |mut frame: Frame| {
+        frame.theory = plan.scene.theory(&reading(&frame));
         samples.push(frame.time, frame.tip());
         samples.push_support(&frame);
-        samples.theory.push(frame.time, &frame.theory);
         // The plot's averaged pull, after the summary's reading (which averages its own).
         if let Some(pull) = pull.push(frame.time, &frame.theory) {
             frame.theory.push(pull);
@@ -183,7 +199,9 @@ pub(super) fn simulate_and_send(
         } else {
             ControlFlow::Break(())
         }
-    });
+    };
+    let outcome = simulate::run_watched(method, watch, &options, Some(stop), on_step, on_frame);
+    samples.theory = figures;
     (outcome, samples, cpu.elapsed())
 }
 

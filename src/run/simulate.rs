@@ -290,7 +290,7 @@ pub fn run(
     stop: Option<&AtomicBool>,
     on_frame: impl FnMut(Frame) -> ControlFlow<()>,
 ) -> Outcome {
-    run_watched(method, None, options, stop, on_frame)
+    run_watched(method, None, options, stop, |_| {}, on_frame)
 }
 
 /// How a run with its shadow at N/2 went ([`run_shadowed`]).
@@ -341,10 +341,17 @@ pub fn run_shadowed(
         shadow: &mut shadow,
         tolerance: None,
     };
-    let outcome = run_watched(run.as_mut(), Some(watch), options, None, |frame| {
-        on_frame(&frame);
-        ControlFlow::Continue(())
-    });
+    let outcome = run_watched(
+        run.as_mut(),
+        Some(watch),
+        options,
+        None,
+        |_| {},
+        |frame| {
+            on_frame(&frame);
+            ControlFlow::Continue(())
+        },
+    );
     Shadowed {
         refused: None,
         diverged: outcome.diverged,
@@ -355,12 +362,15 @@ pub fn run_shadowed(
 }
 
 /// As [`run`], with the live error estimate of `watch` (if any) in every frame the shadow
-/// shares, and the tolerance watched.
+/// shares, and the tolerance watched; `on_step` is shown the method at the start and after
+/// every step (before that step's frame, if it has one): what a figure that must not depend
+/// on the frames reads.
 pub fn run_watched(
     method: &mut dyn Method,
     mut estimating: Option<Watch<'_>>,
     options: &Options,
     stop: Option<&AtomicBool>,
+    mut on_step: impl FnMut(&mut dyn Method),
     mut on_frame: impl FnMut(Frame) -> ControlFlow<()>,
 ) -> Outcome {
     let dt = method.dt();
@@ -408,6 +418,7 @@ pub fn run_watched(
         if let Some(watch) = estimating.as_mut() {
             exceeded = exceeded.or(watch_tip(method, watch, &mut outcome));
         }
+        on_step(&mut *method);
         let at_frame = frame_step(next_frame, options, dt, stride).min(total_steps);
         if logging && at_frame <= step {
             let mut f = frame(method, &mut obs, base);

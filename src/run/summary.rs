@@ -29,7 +29,8 @@ pub struct TipSamples {
     scene: Scene,
     latest: VecDeque<[f64; 3]>,
     free_fall: Option<FreeFall>,
-    /// What the frames measured against the scene's theory, where it has one.
+    /// What the run measured against the scene's theory at every step, where the scene quotes
+    /// it at instants (a fold's falls).
     pub theory: TheoryFigures,
     /// For a shake: the free end's swing and the energy balance.
     shake: Option<ShakeFigures>,

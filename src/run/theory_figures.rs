@@ -1,5 +1,6 @@
-//! What the summary says of a scene's theory: each quantity its frames compared
-//! ([`crate::model::theory::Comparison`]) read at the instants the theory is quoted at. For a
+//! What the summary says of a scene's theory: each quantity the run compared
+//! ([`crate::model::theory::Comparison`]) at every step, read at the instants the theory is
+//! quoted at, so that what it quotes does not depend on the frames. For a
 //! fold, where the free end has fallen 0.25, 0.5 and 0.75 of the length: its time, speed and
 //! the support's tension, measured and predicted, each also averaged over the window of ±0.05
 //! of that fall: the tension over the time the window spans, from the change of the string's
@@ -22,11 +23,11 @@ const SNAP_REBOUND: f64 = 1e-3;
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct QuantityAt {
     pub quantity: &'static str,
-    /// Measured and predicted at the instant, each interpolated between the frames either
+    /// Measured and predicted at the instant, each interpolated between the steps either
     /// side of it.
     pub measured: f64,
     pub predicted: Option<f64>,
-    /// Measured and predicted, averaged over the frames within ±[`FALL_WINDOW`] of the fall.
+    /// Measured and predicted, averaged over the steps within ±[`FALL_WINDOW`] of the fall.
     pub window_measured: f64,
     pub window_predicted: Option<f64>,
     /// measured / predicted − 1, and the same for the window's averages.
@@ -38,7 +39,7 @@ pub struct QuantityAt {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct TheoryAt {
     pub fall: f64,
-    /// When the free end got there (interpolated between frames).
+    /// When the free end got there (interpolated between steps).
     pub time: f64,
     /// Every quantity but the fall itself.
     pub quantities: Vec<QuantityAt>,
@@ -67,7 +68,12 @@ pub struct TheoryFigures {
 }
 
 impl TheoryFigures {
-    /// Takes a frame's comparisons (nothing happens for a scene without a fall).
+    /// Whether a scene whose theory compares `comparisons` has figures to quote (a fall).
+    pub fn quotes(comparisons: &[Comparison]) -> bool {
+        comparisons.iter().any(|c| c.quantity == Comparison::FALL)
+    }
+
+    /// Takes an instant's comparisons (nothing happens for a scene without a fall).
     pub fn push(&mut self, time: f64, comparisons: &[Comparison]) {
         let Some(fall) = comparisons.iter().find(|c| c.quantity == Comparison::FALL) else {
             return;
@@ -166,8 +172,9 @@ fn mean(window: &[&&Kept], value: impl Fn(&Kept) -> Option<f64>) -> Option<f64> 
 
 /// The support's pull averaged over the time the window spans, measured and predicted, from
 /// the downward momentum (its values at index `momentum`): the weight (1) less the momentum's
-/// change over that time. Exact whatever the frames miss: the raw tension jumps each time a
-/// rod rounds the bend, and frames sample those jumps by chance.
+/// change over that time: the raw tension jumps each time a rod rounds the bend, and instants
+/// sample those jumps by chance. Fed every step (`run::pipeline`), it does not depend
+/// on the frames.
 fn pulled(window: &[&&Kept], momentum: usize) -> (f64, Option<f64>) {
     let (Some(first), Some(last)) = (window.first(), window.last()) else {
         return (f64::NAN, None);
