@@ -894,6 +894,25 @@ fn a_blow_up_study_maps_the_seed_schemes_lifetime() {
     );
 }
 
+/// `rope run FLAGS --log-rate RATE`, saved into `dir` with its summary: its exit status, the
+/// summary and what it said on stderr.
+fn at_log_rate(
+    dir: &Scratch,
+    flags: &[&str],
+    rate: &str,
+) -> (Option<i32>, serde_json::Value, String) {
+    let (rrd, json) = (
+        dir.path(&format!("{rate}.rrd")),
+        dir.path(&format!("{rate}.json")),
+    );
+    let mut args = vec!["run", "--log-rate", rate, "--save", rrd.to_str().unwrap()];
+    args.extend_from_slice(&["--summary", json.to_str().unwrap()]);
+    args.extend_from_slice(flags);
+    let out = rope(&args);
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    (out.status.code(), summary(&json), stderr)
+}
+
 /// `--tolerance` from 30° at 1e-4 to t = 3 (where 60 frames a unit once read 8.8e-5 of a whip
 /// whose peak is 2.35e-4, and said the tolerance held), at 10, 60 and 600 frames a unit: the
 /// same method, N, k and predicted error, the same estimate and the same verdict and exit
@@ -902,29 +921,11 @@ fn a_blow_up_study_maps_the_seed_schemes_lifetime() {
 #[test]
 fn tolerance_choice_and_verdict_do_not_depend_on_the_frames() {
     let dir = Scratch::new("tolerance-frames");
+    let flags = ["--angle", "30", "--tolerance", "1e-4", "--duration", "3"];
     let run = |rate: &str| {
-        let json = dir.path(&format!("r{rate}.json"));
-        let out = rope(&[
-            "run",
-            "--angle",
-            "30",
-            "--tolerance",
-            "1e-4",
-            "--duration",
-            "3",
-            "--log-rate",
-            rate,
-            "--save",
-            dir.path(&format!("r{rate}.rrd")).to_str().unwrap(),
-            "--summary",
-            json.to_str().unwrap(),
-        ]);
-        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
-        assert!(
-            matches!(out.status.code(), Some(0 | 4)),
-            "--log-rate {rate}: {stderr}"
-        );
-        (out.status.code(), summary(&json), stderr)
+        let (status, summary, stderr) = at_log_rate(&dir, &flags, rate);
+        assert!(matches!(status, Some(0 | 4)), "--log-rate {rate}: {stderr}");
+        (status, summary, stderr)
     };
     // "chose the … method, N = …, k = …; predicted tip error at most …".
     let chose = |stderr: &str| {
@@ -964,29 +965,11 @@ fn tolerance_choice_and_verdict_do_not_depend_on_the_frames() {
 #[test]
 fn the_folds_quoted_figures_do_not_depend_on_the_frames() {
     let dir = Scratch::new("fold-frames");
+    let flags = ["--scene", "fold", "--gap", "0.02", "--segments", "200"];
     let theory = |rate: &str| {
-        let json = dir.path(&format!("f{rate}.json"));
-        let out = rope(&[
-            "run",
-            "--scene",
-            "fold",
-            "--gap",
-            "0.02",
-            "--segments",
-            "200",
-            "--log-rate",
-            rate,
-            "--save",
-            dir.path(&format!("f{rate}.rrd")).to_str().unwrap(),
-            "--summary",
-            json.to_str().unwrap(),
-        ]);
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        summary(&json)["theory"].clone()
+        let (status, summary, stderr) = at_log_rate(&dir, &flags, rate);
+        assert_eq!(status, Some(0), "{stderr}");
+        summary["theory"].clone()
     };
     let at_60 = theory("60");
     assert_eq!(at_60.as_array().map(Vec::len), Some(3), "{at_60}");
