@@ -33,9 +33,9 @@ pub struct TipEstimate {
     /// Richardson's estimate at the method's nominal order.
     pub estimate: f64,
     /// Richardson's estimate at first order, |x_N − x_(N/2)| / (r − 1): the error where the
-    /// run converges no faster than a whip's first order (through the whip, the nominal
-    /// estimate read 0.45 to 0.9 of a true error that was 1.6 to 2.2 times it, from 20° to
-    /// 80°: `examples/tolerance_instants.rs`). What `--tolerance` is watched by.
+    /// run converges no faster than a whip's first order (through the whip, from 20° to 80°,
+    /// the nominal estimate read 0.42 to 1.0 of the true error: `examples/tolerance_instants.rs`,
+    /// `assets/tolerance-instants/`). What `--tolerance` is watched by.
     pub bound: f64,
 }
 
@@ -128,9 +128,7 @@ impl Shadow {
             shape: shape * self.richardson,
         })
     }
-}
 
-impl Shadow {
     /// Brings the shadow to the run's step `step` and estimates the error of the run's `tip`
     /// there (in the room), at every step the two share, frames or none. `None` as for
     /// [`Shadow::estimate`].

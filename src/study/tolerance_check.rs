@@ -140,8 +140,9 @@ pub struct Measured {
     pub method: MethodKind,
     pub segments: usize,
     pub dt: f64,
-    /// The largest distance of the tip from the reference's at every 1/[`JUDGE_RATE`] of a
-    /// time unit: at every instant, whatever the frames.
+    /// The largest distance of the tip from the reference's at every instant, whatever the
+    /// frames: at every row of a references file (1/[`JUDGE_RATE`] of a time unit), or at
+    /// every step of the run against a computed reference ([`measure`]).
     pub worst: f64,
     /// For a run with its shadow: the largest first-order bound of its live tip estimate, at
     /// every step the two share (what the run's verdict reads).
@@ -211,11 +212,6 @@ pub enum EstimateVerdict {
 }
 
 impl EstimateVerdict {
-    /// Whether the verdict told the truth (a false alarm above EPS/2 is allowed).
-    pub fn truthful(self) -> bool {
-        !matches!(self, Self::MissSilent | Self::FalseAlarm)
-    }
-
     /// A few words for the table.
     pub fn label(self) -> &'static str {
         match self {
@@ -517,7 +513,7 @@ pub fn markdown(spec: &CheckSpec, checked: &Checked, command: &str) -> String {
             r.own_error_over(spec.duration, REFERENCE_RATE)
         );
     }
-    text += "\n## Choices\n\n| scene | EPS | chosen (from) | true worst error | held | live estimate at worst | verdict | CPU s (pilots + run) | grid's cheapest holding EPS | its worst error | its CPU s | ratio | notes |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    text += "\n## Choices\n\n| scene | EPS | chosen (from) | true worst error | held | live estimate's first-order bound at worst | verdict | CPU s (pilots + run) | grid's cheapest holding EPS | its worst error | its CPU s | ratio | notes |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     let run = |m: &Measured| format!("{} N = {}, k = {:.1e}", m.method, m.segments, m.dt);
     for c in &checked.cells {
         let chosen = c.chosen.as_ref();
