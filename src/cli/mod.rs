@@ -1,5 +1,5 @@
-//! The command line: `rope run` ([`run`]) and `rope study` ([`study`]), the scene flags they
-//! share ([`scene`]), the limits both keep, and the checks of the paths they write. Flags
+//! The command line: `rope run` ([`RunArgs`]) and `rope study` ([`StudyArgs`]), the scene flags
+//! they share ([`SceneArgs`]), the limits both keep, and the checks of the paths they write. Flags
 //! become the library's requests and plans here; what is done with them is decided in the
 //! layers below (`plan`) and done by the services above (`service`).
 

@@ -25,8 +25,8 @@
 //! backward pass that back-substitutes, moves the rods and measures the new gaps.
 //!
 //! **Step control, kept reversible.** A step k is split into m equal substeps so that
-//! k/m · max|θ̇| ≤ [`ROTATION`] · min(1, k / k_default) ([`Descriptor::refinement`]) through
-//! the whip of the free end: at the default step and above the bound is [`ROTATION`], and a
+//! k/m · max|θ̇| ≤ `ROTATION` · min(1, k / k_default) ([`Descriptor::refinement`]) through
+//! the whip of the free end: at the default step and above the bound is `ROTATION`, and a
 //! finer k tightens it in proportion, so that halving k halves every substep, the whip's too
 //! (with a fixed bound the whip's substeps, and its energy error, would not change with k).
 //! The rule is symmetric in
@@ -35,7 +35,7 @@
 //! & Söderlind, SIAM J. Sci. Comput. 26, 2005, make the point for variable steps). An integer
 //! m is not a smooth step-size function, though: each change of m moves the method to another
 //! modified energy, which is where its energy error jumps. A Newton that does not
-//! converge retakes the step with twice the substeps, and past [`MAX_SUBSTEPS`] the step
+//! converge retakes the step with twice the substeps, and past `MAX_SUBSTEPS` the step
 //! fails as a divergence with its reason.
 
 use super::constraint_matrix::ConstraintMatrix;

@@ -105,7 +105,7 @@ pub const STEP: &str = "step";
 /// A time series: its entity path, legend name, colour, and how to read it off a frame.
 pub type Series = (&'static str, &'static str, [u8; 3], fn(&Frame) -> f64);
 
-/// The decimal logarithm of |x| as the plots draw it: a deviation below [`LOG_FLOOR`] (an
+/// The decimal logarithm of |x| as the plots draw it: a deviation below `LOG_FLOOR` (an
 /// exact zero among them) at the floor, a value a frame does not have (NaN) left out.
 pub fn log10_abs(x: f64) -> f64 {
     if x.is_nan() {

@@ -1,7 +1,8 @@
 //! `rope study` as a service: a grid of runs against a reference, or one of the studies
 //! beside it (`--long-run`, `--blow-up`, `--estimate-check`, `--tolerance-check`, `--merge`),
-//! its files written to `--out`. What it says goes to the [`Listener`] of its [`Session`]:
-//! the findings as a report, the rest as notices.
+//! its files written to `--out`. What it says goes to the
+//! [`Listener`](super::notices::Listener) of its [`Session`]: the findings as a report, the
+//! rest as notices.
 
 use super::notices::{Notice, Topic};
 use super::{ServiceError, Session};

@@ -135,7 +135,7 @@ pub fn shape(angles: &[f64]) -> Vec<Point> {
     shape_of(angles, None)
 }
 
-/// As [`shape`], for rods of `lengths` where they are given ([`Method::lengths`]).
+/// As [`shape`], for rods of `lengths` where they are given ([`Method::lengths`](crate::methods::Method::lengths)).
 pub fn shape_of(angles: &[f64], lengths: Option<&[f64]>) -> Vec<Point> {
     let mut nodes = Vec::with_capacity(angles.len() + 1);
     geometry::nodes_of(angles, lengths, &mut nodes);

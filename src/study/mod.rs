@@ -2,7 +2,7 @@
 //! stability, energy deviation, solution error against a converged reference, and CPU cost;
 //! then what the rows say, as findings, charts and (optionally) a Rerun recording.
 //!
-//! * [`grid`]: the cells, one run each, in parallel; [`reference`]: the converged solution,
+//! * [`grid`]: the cells, one run each, in parallel; [`mod@reference`]: the converged solution,
 //!   kept at every step ([`trajectory`]) so that each run is measured at every frame;
 //! * [`findings`]: convergence orders, stability limits, the cheapest accurate runs;
 //! * [`report`]: `study.csv`; [`charts`]: SVG and PNG; [`record`]: the same into Rerun;

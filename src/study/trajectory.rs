@@ -45,7 +45,7 @@ impl Trajectory {
 
     /// `method` at `segments` and its default step, from `scene` to `duration`; read back
     /// instead where a folder of kept runs holds it, and kept there once run
-    /// ([`run_cache`](super::run_cache)).
+    /// ([`super::run_cache`]).
     pub fn compute_by(
         method: MethodKind,
         scene: &Scene,
