@@ -12,7 +12,7 @@ use rope::model::bessel;
 use rope::model::support::{resonant_growth_per_period, steady_response};
 use rope::model::{Scene, ShakeStart};
 use rope::run::Frame;
-use rope::run::shake_figures::ShakeFigures;
+use rope::run::shake_figures::{ShakeFigures, ShakeSample};
 
 const SEGMENTS: usize = 100;
 const AMPLITUDE: f64 = 1e-3;
@@ -62,7 +62,14 @@ fn started_on_the_steady_state_off_resonance_the_free_end_swings_a_over_j0_for_t
         // The swing at Ω alone (the summary's lock-in reading) is the steady state's too.
         let mut figures = None;
         for f in &frames {
-            ShakeFigures::push(&mut figures, shake(frequency, ShakeStart::Steady), f);
+            let support = f.support.expect("a shaken support");
+            let sample = ShakeSample {
+                time: f.time,
+                tip_x: f.tip().x,
+                balance: f.balance.expect("a shake's balance"),
+                work: support.work,
+            };
+            ShakeFigures::push(&mut figures, shake(frequency, ShakeStart::Steady), sample);
         }
         let driven = figures.expect("a shake's figures").driven_amplitude;
         eprintln!("shake Ω = {frequency}: at Ω alone {driven:.5e}");

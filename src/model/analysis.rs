@@ -6,21 +6,41 @@
 /// mean spacing between the first and the last is used. `None` with fewer than three
 /// crossings (one full period).
 pub fn period_from_zero_crossings(samples: impl IntoIterator<Item = (f64, f64)>) -> Option<f64> {
-    let mut crossings = Vec::new();
-    let mut last: Option<(f64, f64)> = None;
+    let mut crossings = ZeroCrossings::default();
     for (t, x) in samples {
-        if let Some((t0, x0)) = last
+        crossings.push(t, x);
+    }
+    crossings.period()
+}
+
+/// The zero crossings of a series taken one sample at a time, in constant memory: the first,
+/// the last and how many, which is all [`period_from_zero_crossings`] needs.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ZeroCrossings {
+    last: Option<(f64, f64)>,
+    first: Option<f64>,
+    latest: f64,
+    count: u64,
+}
+
+impl ZeroCrossings {
+    /// Takes the sample `x` at time `t` (after every earlier one).
+    pub fn push(&mut self, t: f64, x: f64) {
+        if let Some((t0, x0)) = self.last
             && ((x0 < 0.0 && x >= 0.0) || (x0 > 0.0 && x <= 0.0))
         {
-            crossings.push(t0 + (t - t0) * x0 / (x0 - x));
+            let crossing = t0 + (t - t0) * x0 / (x0 - x);
+            self.first.get_or_insert(crossing);
+            self.latest = crossing;
+            self.count += 1;
         }
-        last = Some((t, x));
+        self.last = Some((t, x));
     }
-    match crossings.as_slice() {
-        [first, .., last] if crossings.len() >= 3 => {
-            Some(2.0 * (last - first) / (crossings.len() - 1) as f64)
-        }
-        _ => None,
+
+    /// Twice the mean spacing of the crossings: the period, from three crossings or more.
+    pub fn period(&self) -> Option<f64> {
+        let first = self.first.filter(|_| self.count >= 3)?;
+        Some(2.0 * (self.latest - first) / (self.count - 1) as f64)
     }
 }
 

@@ -233,36 +233,50 @@ impl Scene {
                         .predicted("(1 − x) v/2 at this fall", at_fall(fold::momentum)),
                 ]
             }
-            Self::Shake {
-                amplitude,
-                frequency,
-                start,
-            } => {
-                // The steady state is the motion of a steady start; from rest it is the part
-                // the shaking drives, beside the free modes the start excites. Near a
-                // resonance, where the steady state is no longer small, a start from rest
-                // grows instead: its envelope is linear theory's.
-                let response = support::steady_response(frequency, 0.0);
-                let measured = Comparison::new(Comparison::TIP_SIDEWAYS, reading.tip.x);
-                let compared =
-                    if start == ShakeStart::Rest && amplitude * response.abs() > STEADY_TIP_MAX {
-                        let n = resonance_number(frequency);
-                        let resonance = bessel::mode_frequency(n);
-                        let growth = support::resonant_growth_per_period(n, amplitude);
-                        measured.predicted(
-                            "resonance's envelope, growing c_n π A a period",
-                            Some(growth * reading.time * resonance / std::f64::consts::TAU),
-                        )
-                    } else {
-                        measured.predicted(
-                            "steady state A sin Ωt / J₀(2Ω)",
-                            Some(amplitude * response * (frequency * reading.time).sin()),
-                        )
-                    };
-                vec![compared]
-            }
+            Self::Shake { .. } => self
+                .sideways_prediction(reading.time)
+                .map(|(name, predicted)| {
+                    Comparison::new(Comparison::TIP_SIDEWAYS, reading.tip.x)
+                        .predicted(name, Some(predicted))
+                })
+                .into_iter()
+                .collect(),
             Self::Release { .. } | Self::Mode { .. } => Vec::new(),
         }
+    }
+
+    /// For a shake, what linear theory predicts of the free end's sideways displacement at
+    /// `time`, and the prediction's name: the steady state A sin Ωt / J₀(2Ω). The steady state
+    /// is the motion of a steady start; from rest it is the part the shaking drives, beside the
+    /// free modes the start excites. Near a resonance, where the steady state is no longer
+    /// small, a start from rest grows instead: its envelope is linear theory's. `None` for a
+    /// scene with a fixed support.
+    pub fn sideways_prediction(&self, time: f64) -> Option<(&'static str, f64)> {
+        let Self::Shake {
+            amplitude,
+            frequency,
+            start,
+        } = *self
+        else {
+            return None;
+        };
+        let response = support::steady_response(frequency, 0.0);
+        Some(
+            if start == ShakeStart::Rest && amplitude * response.abs() > STEADY_TIP_MAX {
+                let n = resonance_number(frequency);
+                let resonance = bessel::mode_frequency(n);
+                let growth = support::resonant_growth_per_period(n, amplitude);
+                (
+                    "resonance's envelope, growing c_n π A a period",
+                    growth * time * resonance / std::f64::consts::TAU,
+                )
+            } else {
+                (
+                    "steady state A sin Ωt / J₀(2Ω)",
+                    amplitude * response * (frequency * time).sin(),
+                )
+            },
+        )
     }
 
     /// Rates φ̇_i at the start, sampled at the segment centres as [`Scene::initial_angles`]:

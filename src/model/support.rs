@@ -128,6 +128,18 @@ impl SupportNow {
     }
 }
 
+/// The free end of rods at `angles` (of `lengths` where they are not all 1/N) in the room,
+/// hanging from `support` (if it moves).
+pub fn tip_in_the_room(
+    support: Option<SupportNow>,
+    angles: &[f64],
+    lengths: Option<&[f64]>,
+) -> super::geometry::Point {
+    let mut tip = [super::geometry::tip_of(angles, lengths)];
+    into_the_room(support, &mut tip);
+    tip[0]
+}
+
 /// Carries `points` drawn from the support into the room, where `support` (if it moves) is.
 pub fn into_the_room(support: Option<SupportNow>, points: &mut [super::geometry::Point]) {
     if let Some(s) = support {

@@ -72,6 +72,16 @@ pub fn plan_scene(request: &RunRequest, scene: Scene) -> Result<Planned, ConfigE
         tolerance: request.tolerance,
     };
     let (config, choice, pilots) = match request.tolerance {
+        // A step the user did not set does not refuse the frames they asked for: past the
+        // default step's rate, a frame at every step (the step does not follow the frames).
+        None if request.dt.is_none() && !compares => {
+            let steps = 1.0 / request.method.default_dt(request.segments.max(1));
+            let log_rate = match steps.is_finite() && steps > 0.0 {
+                true => request.log_rate.min(steps),
+                false => request.log_rate,
+            };
+            (RunConfig { log_rate, ..asked }, None, None)
+        }
         None => (asked, None, None),
         Some(_) if matches!(scene, Scene::Fold { .. }) => {
             return Err(ConfigError::ToleranceScene {

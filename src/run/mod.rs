@@ -10,6 +10,7 @@ pub mod cost;
 pub mod estimate;
 pub mod lanes;
 pub mod pipeline;
+pub mod probe;
 pub mod progress;
 pub mod shake_figures;
 pub mod simulate;

@@ -3,6 +3,7 @@
 //! applies back-pressure, so no frame is dropped.
 
 use super::config::RunPlan;
+use super::probe::Probes;
 use super::simulate::{self, Frame, Options, Outcome, Watch};
 use super::sink::FrameSink;
 use super::summary::{Summary, TipSamples};
@@ -153,7 +154,6 @@ pub(super) fn simulate_and_send(
         log_rate: plan.log_rate,
         frame_grid: plan.frame_grid,
     };
-    let mut samples = TipSamples::new(plan.scene);
     let initial_tip = geometry::tip(&plan.scene.initial_angles(plan.segments));
     let mut pull = PullWindow::default();
     let cpu = cpu_time::ThreadTime::now();
@@ -176,16 +176,19 @@ pub(super) fn simulate_and_send(
         base,
     ))));
     let mut figures = TheoryFigures::default();
+    // What the summary measures of the motion, on its fine grid: never at the frames.
+    let mut probes = Probes::new(plan.scene, plan.dt, plan.duration, base);
     let on_step = |method: &mut dyn crate::methods::Method| {
+        probes.step(method);
         if quoted {
             let frame = simulate::frame(method, &mut observation, base);
             figures.push(frame.time, &plan.scene.theory(&reading(&frame)));
         }
     };
+    let mut latest = TipSamples::default();
     let on_frame = |mut frame: Frame| {
         frame.theory = plan.scene.theory(&reading(&frame));
-        samples.push(frame.time, frame.tip());
-        samples.push_support(&frame);
+        latest.push(frame.time, frame.tip());
         // The plot's averaged pull, after the summary's reading (which averages its own).
         if let Some(pull) = pull.push(frame.time, &frame.theory) {
             frame.theory.push(pull);
@@ -201,8 +204,9 @@ pub(super) fn simulate_and_send(
         }
     };
     let outcome = simulate::run_watched(method, watch, &options, Some(stop), on_step, on_frame);
-    samples.theory = figures;
-    (outcome, samples, cpu.elapsed())
+    latest.theory = figures;
+    latest.probes = Some(probes);
+    (outcome, latest, cpu.elapsed())
 }
 
 /// Sleeps until `target_seconds` after `started`, waking early when `stop` is set.

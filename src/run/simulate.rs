@@ -10,7 +10,7 @@ use crate::methods::{
 };
 use crate::model::Scene;
 use crate::model::geometry::{self, Energy, Point};
-use crate::model::support::{self, SupportNow};
+use crate::model::support::{self, SupportNow, tip_in_the_room};
 use nalgebra::Vector2;
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -50,7 +50,9 @@ pub struct EstimateOutcome {
     /// ([`TipEstimate::bound`](super::estimate::TipEstimate::bound)): what a tolerance is held
     /// to.
     pub max_tip_bound: f64,
-    /// The largest shape estimate at any frame (the shape is compared at the frames alone).
+    /// The largest shape estimate at any frame (the shape is compared at the frames alone,
+    /// hence its name in the summary).
+    #[serde(rename = "max_shape_at_frames")]
     pub max_shape: f64,
     /// The tip estimate at the last step that had one.
     pub final_tip: Option<f64>,
@@ -382,8 +384,8 @@ pub fn run_watched(
     let total_steps = (options.duration / dt).round() as u64;
     let base = EnergyBase::of(method);
     let (energy_reference, energy_scale) = (base.reference, base.scale);
-    // Check the energy about every 1e-3 time units: cheap against the steps between.
-    let check_every = ((1e-3 / dt).round() as u64).clamp(1, 1000);
+    // Check the energy on the fine grid: cheap against the steps between.
+    let check_every = super::trust::steps_between(dt);
     let mut outcome = Outcome {
         steps: 0,
         time: 0.0,
@@ -470,14 +472,6 @@ pub fn run_watched(
         outcome.tip = tip_in_the_room(trusted_support, &trusted_angles, method.lengths());
     }
     outcome
-}
-
-/// The free end of rods at `angles` (of `lengths`, [`Method::lengths`]) in the room, hanging
-/// from `support` (if it moves).
-fn tip_in_the_room(support: Option<SupportNow>, angles: &[f64], lengths: Option<&[f64]>) -> Point {
-    let mut tip = [geometry::tip_of(angles, lengths)];
-    support::into_the_room(support, &mut tip);
-    tip[0]
 }
 
 /// At a step the run shares with its shadow, the tip's live estimate, what it says put into

@@ -3,12 +3,12 @@
 
 use super::config::RunPlan;
 use super::estimate::Shadow;
+use super::probe::Probes;
 use super::shake_figures::ShakeFigures;
-use super::simulate::{EstimateOutcome, Frame, Outcome, REFERENCE_STEP};
+use super::simulate::{EstimateOutcome, Outcome, REFERENCE_STEP};
 use super::theory_figures::{FALL_WINDOW, TheoryAt, TheoryFigures};
 use crate::error::Diverged;
 use crate::methods::{MethodKind, StepStatistics};
-use crate::model::analysis;
 use crate::model::theory::Comparison;
 use crate::model::{Point, Scene};
 use serde::Serialize;
@@ -18,65 +18,29 @@ use std::time::Duration;
 /// Tip samples the summary keeps (the latest), so that an endless run's memory stays flat.
 pub const MAX_TIP_SAMPLES: usize = 1 << 16;
 
-/// How long the free fall of a released tip is checked: well before the bend reaches the tip
-/// (about t ≈ 1.2), where the chains of rods obey the law to round-off (`docs/physics.md`).
-pub const FREE_FALL_UNTIL: f64 = 0.75;
+pub use super::probe::{FREE_FALL_UNTIL, FreeFall};
 
-/// The tip's latest `[t, x, y]` samples, at most [`MAX_TIP_SAMPLES`], and how far it strayed
-/// from free fall up to [`FREE_FALL_UNTIL`].
-#[derive(Clone, Debug)]
+/// The tip's latest `[t, x, y]` samples at the frames, at most [`MAX_TIP_SAMPLES`], and what
+/// the run measured at every step or on the fine grid, whatever the frames.
+#[derive(Clone, Debug, Default)]
 pub struct TipSamples {
-    scene: Scene,
     latest: VecDeque<[f64; 3]>,
-    free_fall: Option<FreeFall>,
     /// What the run measured against the scene's theory at every step, where the scene quotes
     /// it at instants (a fold's falls).
     pub theory: TheoryFigures,
-    /// For a shake: the free end's swing and the energy balance.
-    shake: Option<ShakeFigures>,
+    /// What the run measured on the fine grid: a release's free fall, a mode's period, a
+    /// shake's swing and balance.
+    pub probes: Option<Probes>,
 }
 
 impl TipSamples {
-    /// No samples yet, of a run from `scene`.
-    pub fn new(scene: Scene) -> Self {
-        Self {
-            scene,
-            latest: VecDeque::new(),
-            free_fall: None,
-            theory: TheoryFigures::default(),
-            shake: None,
-        }
-    }
-
-    /// Takes a frame of a run whose support moves (nothing under a fixed support).
-    pub fn push_support(&mut self, frame: &Frame) {
-        ShakeFigures::push(&mut self.shake, self.scene, frame);
-    }
-
-    /// Adds the tip at `time`, forgetting the oldest sample when full.
+    /// Adds the tip at the frame at `time`, forgetting the oldest sample when full.
     pub fn push(&mut self, time: f64, tip: Point) {
         if self.latest.len() == MAX_TIP_SAMPLES {
             self.latest.pop_front();
         }
         self.latest.push_back([time, tip.x, tip.y]);
-        if time <= FREE_FALL_UNTIL
-            && let Some(gap) = self.scene.free_fall_gap(time, tip.x, tip.y)
-        {
-            let worst = self.free_fall.map_or(0.0, |f| f.max_gap);
-            self.free_fall = Some(FreeFall {
-                until: time,
-                max_gap: worst.max(gap),
-            });
-        }
     }
-}
-
-/// The tip of a release against free fall (`Scene::free_fall_gap`), over the frames up to
-/// `until`.
-#[derive(Clone, Copy, Debug, Serialize)]
-pub struct FreeFall {
-    pub until: f64,
-    pub max_gap: f64,
 }
 
 /// How the run ended.
@@ -187,7 +151,8 @@ pub struct Summary {
     /// energy the velocity projections removed and put back.
     pub step_statistics: Option<StepStatistics>,
     /// The live error estimate (Richardson against the shadow at N/2): its largest and final
-    /// tip values, its largest shape value; absent for a run without a shadow.
+    /// tip values (at every step the two share), its largest shape value at the frames;
+    /// absent for a run without a shadow.
     pub error_estimate: Option<EstimateOutcome>,
     /// The tip error `--tolerance` asked for.
     pub tolerance: Option<f64>,
@@ -201,27 +166,27 @@ pub struct Summary {
     pub tolerance_exceeded_at: Option<f64>,
     /// `[t, x, y]` of the tip at every logged frame.
     pub tip_samples: Vec<[f64; 3]>,
-    /// Oscillation period from the tip's zero crossings, for the `mode` scene (it needs three
-    /// crossings, 1.25 periods).
+    /// Oscillation period from the tip's zero crossings on the fine grid (`run::probe`), for
+    /// the `mode` scene (it needs three crossings, 1.25 periods).
     pub period: Option<f64>,
     /// The small-oscillation period 2π/ω_n from the Bessel zero, for the `mode` scene.
     pub period_theory: Option<f64>,
-    /// For a release: the largest distance of the tip from the free-fall law up to
-    /// [`FREE_FALL_UNTIL`] (exact for the string until the bend arrives).
+    /// For a release: the largest distance of the tip from the free-fall law on the fine grid
+    /// up to [`FREE_FALL_UNTIL`] (exact for the string until the bend arrives).
     pub free_fall: Option<FreeFall>,
     /// For a fold: the free end's time, speed and the support's tension where it has fallen
     /// 0.25, 0.5 and 0.75, each against Calkin & March's string (`model::fold`).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub theory: Vec<TheoryAt>,
     /// For a shake: the free end's largest sideways swing against the linear steady state,
-    /// and the energy balance E − E₀ − W.
+    /// and the energy balance E − E₀ − W, on the fine grid.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub shake: Option<ShakeFigures>,
     /// Why the recording could not be completed (e.g. the viewer went away), if it could not.
     pub recording_error: Option<String>,
     /// In a run of several methods side by side: the largest distance, at equal arc length,
-    /// between this method's string and that of the most accurate method running, over the
-    /// run (`None` for the most accurate itself, and in a run of one method).
+    /// between this method's string and that of the most accurate method running, at the
+    /// frames (`None` for the most accurate itself, and in a run of one method).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub disagreement: Option<f64>,
     /// Why the method ran when none was named and it is not the report's: for a run left
@@ -252,16 +217,12 @@ impl Summary {
         } else {
             Status::Ok
         };
-        let free_fall = tip_samples.free_fall;
+        let probes = tip_samples.probes.as_ref();
+        let free_fall = probes.and_then(|p| p.free_fall);
+        let period = probes.and_then(Probes::period);
+        let shake = probes.and_then(|p| p.shake);
         let theory = tip_samples.theory.read();
-        let shake = tip_samples.shake;
         let samples: Vec<[f64; 3]> = tip_samples.latest.into();
-        let period = match plan.scene {
-            Scene::Mode { .. } => {
-                analysis::period_from_zero_crossings(samples.iter().map(|s| (s[0], s[1])))
-            }
-            Scene::Release { .. } | Scene::Fold { .. } | Scene::Shake { .. } => None,
-        };
         let segment_steps = (outcome.steps as f64 * plan.segments as f64).max(1.0);
         Self {
             method: plan.method,
@@ -399,7 +360,7 @@ impl Summary {
         }
         if let Some(e) = &self.error_estimate {
             text += &format!(
-                "  estimated error (against the run at N = {}): tip {:.1e} at worst (t = {:.3}), {} at the end; shape {:.1e} at worst\n",
+                "  estimated error (against the run at N = {}): tip {:.1e} at worst (t = {:.3}), {} at the end; shape {:.1e} at worst at the frames\n",
                 Shadow::segments_of(self.segments),
                 e.max_tip,
                 e.max_tip_time,
@@ -559,7 +520,7 @@ pub fn side_by_side(summaries: &[Summary]) -> String {
         })
         .collect();
     format!(
-        "rope: side by side, the largest distance from {best}'s string at equal arc length: {}",
+        "rope: side by side, the largest distance from {best}'s string at equal arc length, at the frames: {}",
         each.join("; ")
     )
 }

@@ -7,6 +7,7 @@
 pub mod notices;
 pub mod run;
 pub mod study;
+pub mod sweep_notices;
 
 use crate::error::ConfigError;
 use crate::run::Verdict;

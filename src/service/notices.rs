@@ -9,7 +9,7 @@ use crate::model::Scene;
 use crate::model::scene::FOLD_RODS_ACROSS_GAP;
 use crate::plan::Planned;
 use crate::plan::pilot::{self, Basis, Pilots};
-use crate::run::config::{short_step, trimmed_fixed};
+use crate::run::config::{at_most_three_digits, short_step, trimmed_fixed};
 use crate::run::simulate::Exceeded;
 use crate::run::{RunPlan, cost};
 use std::sync::{Mutex, PoisonError};
@@ -140,6 +140,35 @@ impl Listener for Collected {
     }
 }
 
+/// A `--log-rate` above the rate of a step the user did not set (the default one, or the one
+/// `--tolerance` chose): a frame at every step instead, and how to have more.
+fn fewer_frames(asked: &Asked, plan: &RunPlan, chosen: bool) -> Option<Notice> {
+    let rate = asked.log_rate.filter(|&rate| rate > plan.log_rate)?;
+    let (step, topic, then) = match chosen {
+        true => (
+            "the chosen step",
+            Topic::ToleranceChoice,
+            "The tolerance is watched at every step whatever the frames".to_owned(),
+        ),
+        false => (
+            "the default step",
+            Topic::DefaultStep,
+            format!(
+                "For more, give --dt {} or less",
+                at_most_three_digits(1.0 / rate)
+            ),
+        ),
+    };
+    Some(Notice::new(
+        topic,
+        format!(
+            "rope: --log-rate {rate} asks more frames than {step} takes (k = {}); a frame at every step instead ({} a time unit). {then}",
+            step_text(plan.dt),
+            trimmed_fixed(plan.log_rate, 1)
+        ),
+    ))
+}
+
 /// What the flags of a run chose for the user, before it starts.
 pub struct Asked {
     /// `--tolerance`, if given.
@@ -194,17 +223,11 @@ pub fn announce(asked: &Asked, plans: &[Planned]) -> Vec<Notice> {
                 plan.cost.seconds
             ),
         ));
-        if let Some(rate) = asked.log_rate.filter(|&rate| rate > plan.log_rate) {
-            notices.push(Notice::new(
-                Topic::ToleranceChoice,
-                format!(
-                    "rope: --log-rate {rate} asks more frames than the chosen step takes; a frame at every step instead ({} a time unit). The tolerance is watched at every step whatever the frames",
-                    trimmed_fixed(plan.log_rate, 1)
-                ),
-            ));
-        }
     }
-    for Planned { plan, .. } in plans {
+    for Planned { plan, choice, .. } in plans {
+        if let Some(notice) = fewer_frames(asked, plan, choice.is_some()) {
+            notices.push(notice);
+        }
         if let Some(notice) = coarse_bend(plan) {
             notices.push(notice);
         }
@@ -505,65 +528,6 @@ pub fn live_dropped(dropped: u64) -> Notice {
             "rope: {dropped} messages of the live picture were not sent while its viewers were behind (the history and any file are whole)"
         ),
     )
-}
-
-/// What a sweep of the shaken support's frequency found: the peaks of the free end's largest
-/// swing and of its swing at Ω alone against the resonances ω_n of linear theory, its CPU
-/// time, and where its chart went (`chart`: written there, or not asked for, or why it could
-/// not be written).
-pub fn sweep(
-    frequencies: usize,
-    largest: &[(f64, f64)],
-    driven: &[(f64, f64)],
-    cpu_seconds: f64,
-    chart: Result<Option<&std::path::Path>, String>,
-) -> Notice {
-    let found = format!(
-        "the tallest peak nearest each resonance of the free end's largest swing at {}; of its swing at Ω alone at {}",
-        tallest_peaks(largest),
-        tallest_peaks(driven)
-    );
-    let kept = match chart {
-        Ok(Some(path)) => format!("its chart and CSV: {}.png, .svg, .csv", path.display()),
-        Ok(None) => {
-            "give --save FILE.rrd to keep its chart and CSV beside the recording".to_owned()
-        }
-        Err(why) => format!("its chart could not be written ({why}); the recording is whole"),
-    };
-    Notice::new(
-        Topic::Sweep,
-        format!(
-            "rope: sweep of {frequencies} frequencies in {cpu_seconds:.1} s of CPU simulating: {found}; {kept}"
-        ),
-    )
-}
-
-/// The tallest of `peaks` nearer each resonance than any other (a start from rest adds
-/// smaller peaks of its free modes between them), each against its ω_n, in words.
-fn tallest_peaks(peaks: &[(f64, f64)]) -> String {
-    let mut tallest: Vec<(u32, f64, f64)> = Vec::new();
-    for &(omega, swing) in peaks {
-        let n = crate::model::scene::resonance_number(omega);
-        match tallest.iter_mut().find(|t| t.0 == n) {
-            Some(t) if swing > t.2 => *t = (n, omega, swing),
-            Some(_) => {}
-            None => tallest.push((n, omega, swing)),
-        }
-    }
-    if tallest.is_empty() {
-        return "none within the sweep".to_owned();
-    }
-    let named: Vec<String> = tallest
-        .iter()
-        .map(|&(n, omega, _)| {
-            let resonance = crate::model::bessel::mode_frequency(n);
-            format!(
-                "Ω = {omega:.4} (ω{n} = {resonance:.4}: {:+.2} %)",
-                100.0 * (omega / resonance - 1.0)
-            )
-        })
-        .collect();
-    named.join(", ")
 }
 
 /// A viewer is gone, and a file or a served endpoint keeps the recording.

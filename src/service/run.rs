@@ -217,7 +217,7 @@ fn finish_sweep(args: &RunArgs, swept: &Swept) -> notices::Notice {
             .collect();
         analysis::peaks(&curve)
     };
-    notices::sweep(
+    super::sweep_notices::sweep(
         swept.points.len(),
         &peaks(|p| p.largest),
         &peaks(|p| p.driven),
