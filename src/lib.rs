@@ -26,16 +26,21 @@
 //! Coordinates: x horizontal away from the support, **y pointing down**; φ is the angle of the
 //! tangent below the horizontal.
 
+#[cfg(feature = "app")]
 pub mod cli;
 pub mod error;
 pub mod methods;
 pub mod model;
 pub mod plan;
+#[cfg(feature = "app")]
 pub mod recording;
 pub mod run;
+#[cfg(feature = "app")]
 pub mod service;
+#[cfg(feature = "app")]
 pub mod study;
 
 pub use error::{ConfigError, Diverged};
 pub use methods::{Method, MethodKind};
 pub use model::Scene;
+pub use run::{Frame, RunConfig, Simulated, Summary, simulate};

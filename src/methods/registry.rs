@@ -7,9 +7,8 @@ use crate::error::ConfigError;
 use crate::model::Scene;
 
 /// The methods a run can choose by name.
-#[derive(
-    Clone, Copy, Debug, PartialEq, Eq, Hash, clap::ValueEnum, serde::Serialize, serde::Deserialize,
-)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[cfg_attr(feature = "app", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum MethodKind {
     /// The report's finite-difference scheme: first order in h, explicit, cannot start from

@@ -3,7 +3,8 @@
 //! be trusted ([`trust`]), the live error estimate from a shadow at half the segments
 //! ([`estimate`]), the two-thread pipeline that hands the frames to a [`sink::FrameSink`]
 //! ([`pipeline`]), several methods side by side in lockstep ([`lanes`]), and what a run
-//! reports ([`summary`], [`progress`]). Nothing here knows where frames end up.
+//! reports ([`summary`]; with the program, `progress`). Nothing here knows where frames end
+//! up.
 
 pub mod config;
 pub mod cost;
@@ -11,6 +12,7 @@ pub mod estimate;
 pub mod lanes;
 pub mod pipeline;
 pub mod probe;
+#[cfg(feature = "app")]
 pub mod progress;
 pub mod shake_figures;
 pub mod simulate;
@@ -18,9 +20,11 @@ pub mod sink;
 pub mod summary;
 pub mod theory_figures;
 pub mod trust;
+pub mod whole;
 
 pub use config::{RunConfig, RunPlan};
 pub use cost::{Cost, Limits};
 pub use simulate::Frame;
 pub use sink::FrameSink;
 pub use summary::{Status, Summary, Verdict};
+pub use whole::{Simulated, simulate};
