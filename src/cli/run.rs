@@ -83,6 +83,13 @@ pub struct RunArgs {
     #[arg(long, value_name = "FILE")]
     pub summary: Option<PathBuf>,
 
+    /// Write the run's frames as tables, CSV or Parquet by FILE's extension: the series (time,
+    /// method, tip, energies, support tension, live estimate; a shake's work and balance) at
+    /// FILE, the tension profiles (time, method, s, x, y, F) beside it as STEM-profiles.EXT.
+    /// Float64 values; y points down (docs/data.md).
+    #[arg(long, value_name = "FILE")]
+    pub table: Option<PathBuf>,
+
     /// Run a seed time step past the estimated stability limit anyway (to watch it fail).
     #[arg(long)]
     pub allow_unstable: bool,

@@ -26,4 +26,5 @@ pub mod memory;
 pub mod shapes;
 pub mod styling;
 pub mod sweep_view;
+pub mod table;
 pub mod viewer_sinks;

@@ -231,18 +231,12 @@ impl SharedShapes {
 /// the support, s = 0, then each of the method's tensions where it sits (the rods' at each
 /// rod's middle, the seed's a segment below each node: `Frame::tension_first_at`).
 pub(super) fn profile(f: &Frame) -> Vec<[f32; 2]> {
-    let n = f.tension.len() as f64;
-    // Graded rods: each tension the same fraction of its own rod along.
-    let at = |i: usize| match &f.edges {
-        None => (i as f64 + f.tension_first_at) / n,
-        Some(e) => e[i] + f.tension_first_at * (e[i + 1] - e[i]),
-    };
     std::iter::once([0.0, -(f.support_tension as f32)])
         .chain(
             f.tension
                 .iter()
                 .enumerate()
-                .map(|(i, &t)| [at(i) as f32, -(t as f32)]),
+                .map(|(i, &t)| [f.tension_s(i) as f32, -(t as f32)]),
         )
         .collect()
 }

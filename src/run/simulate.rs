@@ -149,6 +149,15 @@ impl Frame {
     pub fn tip(&self) -> Point {
         self.nodes.last().copied().unwrap_or_else(Point::origin)
     }
+
+    /// Where `tension[i]` sits along the string, s = 0 at the support and 1 at the tip,
+    /// [`Frame::tension_first_at`] of its own segment along (graded rods: of its own rod).
+    pub fn tension_s(&self, i: usize) -> f64 {
+        match &self.edges {
+            None => (i as f64 + self.tension_first_at) / self.tension.len() as f64,
+            Some(e) => e[i] + self.tension_first_at * (e[i + 1] - e[i]),
+        }
+    }
 }
 
 /// How a run ended and what it measured.

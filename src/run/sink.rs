@@ -67,6 +67,37 @@ impl FrameSink for () {
     fn end_run(&mut self, _time: f64, _steps: u64) {}
 }
 
+/// A sink that may not be there (a table not asked for): the frames go to it if it is.
+impl<S: FrameSink> FrameSink for Option<S> {
+    type Error = S::Error;
+
+    fn begin_run(&mut self, plan: &RunPlan) -> Result<(), Self::Error> {
+        self.as_mut().map_or(Ok(()), |s| s.begin_run(plan))
+    }
+
+    fn frames(&mut self, frames: &[Frame]) -> Result<(), Self::Error> {
+        self.as_mut().map_or(Ok(()), |s| s.frames(frames))
+    }
+
+    fn flush(&mut self) -> Result<(), Self::Error> {
+        self.as_mut().map_or(Ok(()), FrameSink::flush)
+    }
+
+    fn end_run(&mut self, time: f64, steps: u64) {
+        if let Some(s) = self.as_mut() {
+            s.end_run(time, steps);
+        }
+    }
+
+    fn begin_lanes(&mut self, plans: &[RunPlan]) -> Result<(), Self::Error> {
+        self.as_mut().map_or(Ok(()), |s| s.begin_lanes(plans))
+    }
+
+    fn lane_ended(&mut self, lane: usize, why: &Diverged) -> Result<(), Self::Error> {
+        self.as_mut().map_or(Ok(()), |s| s.lane_ended(lane, why))
+    }
+}
+
 /// Several sinks that each take every frame (a file that keeps every frame beside viewers
 /// that get a live picture): each call goes to each in turn, the first error ends it.
 impl<S: FrameSink> FrameSink for Vec<S> {
@@ -121,4 +152,49 @@ impl FrameSink for crossbeam_channel::Sender<Frame> {
     }
 
     fn end_run(&mut self, _time: f64, _steps: u64) {}
+}
+
+/// Why one of two sinks could not take the run.
+#[derive(Debug, thiserror::Error)]
+pub enum EitherFailed<A: std::error::Error, B: std::error::Error> {
+    #[error(transparent)]
+    First(A),
+    #[error(transparent)]
+    Second(B),
+}
+
+/// Two sinks of different kinds that each take every frame (the recording and the tables):
+/// each call goes to the first, then the second; the first error ends it.
+impl<A: FrameSink, B: FrameSink> FrameSink for (A, B) {
+    type Error = EitherFailed<A::Error, B::Error>;
+
+    fn begin_run(&mut self, plan: &RunPlan) -> Result<(), Self::Error> {
+        self.0.begin_run(plan).map_err(EitherFailed::First)?;
+        self.1.begin_run(plan).map_err(EitherFailed::Second)
+    }
+
+    fn frames(&mut self, frames: &[Frame]) -> Result<(), Self::Error> {
+        self.0.frames(frames).map_err(EitherFailed::First)?;
+        self.1.frames(frames).map_err(EitherFailed::Second)
+    }
+
+    fn flush(&mut self) -> Result<(), Self::Error> {
+        self.0.flush().map_err(EitherFailed::First)?;
+        self.1.flush().map_err(EitherFailed::Second)
+    }
+
+    fn end_run(&mut self, time: f64, steps: u64) {
+        self.0.end_run(time, steps);
+        self.1.end_run(time, steps);
+    }
+
+    fn begin_lanes(&mut self, plans: &[RunPlan]) -> Result<(), Self::Error> {
+        self.0.begin_lanes(plans).map_err(EitherFailed::First)?;
+        self.1.begin_lanes(plans).map_err(EitherFailed::Second)
+    }
+
+    fn lane_ended(&mut self, lane: usize, why: &Diverged) -> Result<(), Self::Error> {
+        self.0.lane_ended(lane, why).map_err(EitherFailed::First)?;
+        self.1.lane_ended(lane, why).map_err(EitherFailed::Second)
+    }
 }

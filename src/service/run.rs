@@ -15,6 +15,7 @@ use crate::recording::budget::Budget;
 use crate::recording::destinations::{Layouts, Output, Recording};
 use crate::recording::error::OutputError;
 use crate::recording::logger::RopeLogger;
+use crate::recording::table::Tables;
 use crate::recording::viewer_sinks::ViewerLink;
 use crate::run::progress::Progress;
 use crate::run::shake_figures::SweepPoint;
@@ -48,6 +49,12 @@ pub fn run(args: &RunArgs, session: &Session) -> Result<Outcome, ServiceError> {
     if let Some(path) = args.summary.as_deref() {
         check_writable_file("summary", path)?;
     }
+    // The tables, before the recording opens: a wrong extension is said at once.
+    let shakes = plans.iter().any(|p| p.plan.scene.support().moves());
+    let tables = match args.table.as_deref() {
+        Some(path) => Some(Tables::create(path, shakes).map_err(ServiceError::bad_input)?),
+        None => None,
+    };
     let stop = &session.stop;
     let headline = shared_headline(&plans);
     let lanes = plans.first().map(Planned::lanes).unwrap_or_default();
@@ -108,7 +115,13 @@ pub fn run(args: &RunArgs, session: &Session) -> Result<Outcome, ServiceError> {
             Arc::clone(&session.listener),
         );
     }
-    let (mut summary, strayed, swept) = run_passes(args, &plans, &mut loggers, session)?;
+    let mut sinks = (loggers, tables);
+    let (mut summary, strayed, swept) = run_passes(args, &plans, &mut sinks, session)?;
+    let (loggers, tables) = sinks;
+    // A Parquet table is read from its footer: written now, whatever ended the run.
+    if let Some(Err(err)) = tables.map(Tables::finish) {
+        summary.recording_error.get_or_insert(err.to_string());
+    }
     if swept.points.len() >= 2 {
         tell(finish_sweep(args, &swept));
     }
@@ -233,7 +246,7 @@ fn finish_sweep(args: &RunArgs, swept: &Swept) -> notices::Notice {
 fn run_passes(
     args: &RunArgs,
     plans: &[Planned],
-    logger: &mut Vec<RopeLogger>,
+    sinks: &mut (Vec<RopeLogger>, Option<Tables>),
     session: &Session,
 ) -> anyhow::Result<(Summary, Strayed, Swept)> {
     let sweep = is_sweep(plans);
@@ -257,9 +270,9 @@ fn run_passes(
                 }
             };
             let summary = if planned.others.is_empty() {
-                crate::run::pipeline::run(plan, logger, stop, &on_frame)?
+                crate::run::pipeline::run(plan, sinks, stop, &on_frame)?
             } else {
-                let lanes = crate::run::lanes::run(&planned.lanes(), logger, stop, &on_frame)?;
+                let lanes = crate::run::lanes::run(&planned.lanes(), sinks, stop, &on_frame)?;
                 side_by_side(lanes)?
             };
             progress.finish();
@@ -299,7 +312,7 @@ fn run_passes(
                     driven: f.driven_amplitude,
                 });
                 swept.cpu_seconds += summary.cpu_seconds;
-                for logger in logger.iter() {
+                for logger in &sinks.0 {
                     logger
                         .log_sweep(amplitude, &swept.points)
                         .context("logging the sweep")?;
