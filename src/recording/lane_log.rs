@@ -35,6 +35,10 @@ pub(super) struct LaneLog {
     pub(super) history: bool,
     /// Frames of this lane seen so far.
     pub(super) frames_seen: u64,
+    /// Which series' styling has been logged, bit i for [`SERIES`]`[i]` (bit 63 for the
+    /// tolerance's): a series is styled when it is first sent, so that a recording holds no
+    /// entity its scene never logs.
+    pub(super) styled: u64,
 }
 
 /// Rows of time series per time unit each of several methods side by side sends at most.
@@ -82,6 +86,7 @@ impl LaneLog {
             series_stride,
             history: keeping != Keeping::Everything,
             frames_seen: 0,
+            styled: 0,
         }
     }
 

@@ -160,36 +160,6 @@ impl RopeLogger {
                 .with_radii([0.008])
                 .with_colors([rerun::Color::from_rgb(230, 150, 0)]),
         )?;
-        for (tolerance, passed, name) in [
-            (path::TOLERANCE, path::TOLERANCE_PASSED, "tolerance"),
-            (
-                path::LOG_TOLERANCE,
-                path::LOG_TOLERANCE_PASSED,
-                "log₁₀ tolerance",
-            ),
-        ] {
-            rec.log_static(
-                tolerance,
-                &rerun::SeriesLines::new()
-                    .with_names([name])
-                    .with_colors([rerun::Color::from_rgb(200, 40, 40)]),
-            )?;
-            rec.log_static(
-                passed,
-                &rerun::SeriesPoints::new()
-                    .with_names(["passed the tolerance"])
-                    .with_colors([rerun::Color::from_rgb(200, 40, 40)])
-                    .with_marker_sizes([6.0]),
-            )?;
-        }
-        for (entity, name, [r, g, b], _) in SERIES {
-            rec.log_static(
-                entity,
-                &rerun::SeriesLines::new()
-                    .with_names([name])
-                    .with_colors([rerun::Color::from_rgb(r, g, b)]),
-            )?;
-        }
         Ok(Self {
             rec,
             keeping,
@@ -494,6 +464,50 @@ impl RopeLogger {
     }
 }
 
+/// The [`LaneLog::styled`] bit of the tolerance's styling.
+const TOLERANCE_STYLED: u64 = 1 << 63;
+
+/// How series `i` of [`SERIES`] is drawn in `lane`: alone, in its own name and colour; one
+/// method of several side by side, in the method's colour, named by it.
+fn series_style(lane: &LaneLog, i: usize) -> rerun::SeriesLines {
+    let (entity, name, [r, g, b], _) = SERIES[i];
+    let (name, colour) = match lane.index {
+        None => (name.to_owned(), rerun::Color::from_rgb(r, g, b)),
+        Some(_) if entity.starts_with("energy/") => (format!("{} {name}", lane.name), lane.colour),
+        Some(_) => (lane.name.to_owned(), lane.colour),
+    };
+    rerun::SeriesLines::new()
+        .with_names([name])
+        .with_colors([colour])
+}
+
+/// The tolerance's line and the points where the estimate passed it, in red.
+fn log_tolerance_style(rec: &RecordingStream) -> rerun::RecordingStreamResult<()> {
+    for (tolerance, passed, name) in [
+        (path::TOLERANCE, path::TOLERANCE_PASSED, "tolerance"),
+        (
+            path::LOG_TOLERANCE,
+            path::LOG_TOLERANCE_PASSED,
+            "log₁₀ tolerance",
+        ),
+    ] {
+        rec.log_static(
+            tolerance,
+            &rerun::SeriesLines::new()
+                .with_names([name])
+                .with_colors([rerun::Color::from_rgb(200, 40, 40)]),
+        )?;
+        rec.log_static(
+            passed,
+            &rerun::SeriesPoints::new()
+                .with_names(["passed the tolerance"])
+                .with_colors([rerun::Color::from_rgb(200, 40, 40)])
+                .with_marker_sizes([6.0]),
+        )?;
+    }
+    Ok(())
+}
+
 /// Sends one lane's gathered time series, one chunk per series.
 fn send_lane_series(
     rec: &RecordingStream,
@@ -515,6 +529,10 @@ fn send_lane_series(
             if kept().next().is_none() {
                 continue;
             }
+            if lane.styled & (1 << i) == 0 {
+                rec.log_static(lane.at(entity), &series_style(lane, i))?;
+                lane.styled |= 1 << i;
+            }
             rec.send_columns(
                 lane.at(entity),
                 timelines(kept().map(|r| r.0), kept().map(|r| r.1)),
@@ -522,6 +540,10 @@ fn send_lane_series(
             )?;
         }
         if let Some(eps) = tolerance {
+            if lane.styled & TOLERANCE_STYLED == 0 {
+                log_tolerance_style(rec)?;
+                lane.styled |= TOLERANCE_STYLED;
+            }
             for (entity, value) in [
                 (path::TOLERANCE, eps),
                 (path::LOG_TOLERANCE, log10_abs(eps)),
@@ -599,26 +621,6 @@ impl RopeLogger {
     pub fn note_in_parameters(&mut self, note: String) {
         self.parameters_note = Some(note);
     }
-
-    /// How one method of several side by side is drawn in the plots: in its own colour,
-    /// named by it.
-    fn style_lane(&self, lane: &LaneLog) -> rerun::RecordingStreamResult<()> {
-        let (method, colour) = (lane.name, lane.colour);
-        for (entity, name, ..) in SERIES.into_iter().filter(|(e, ..)| lane.sends(e)) {
-            let name = if entity.starts_with("energy/") {
-                format!("{method} {name}")
-            } else {
-                method.to_owned()
-            };
-            self.rec.log_static(
-                lane.at(entity),
-                &rerun::SeriesLines::new()
-                    .with_names([name])
-                    .with_colors([colour]),
-            )?;
-        }
-        Ok(())
-    }
 }
 
 /// Time units of simulated time over which a history gathers its rows and shapes before
@@ -656,9 +658,6 @@ impl FrameSink for RopeLogger {
             .enumerate()
             .map(|(i, p)| LaneLog::of(i, p, self.keeping))
             .collect();
-        for lane in &self.lanes {
-            self.style_lane(lane)?;
-        }
         // The shared shapes' styling; their colours come with each instant, and the legend
         // names them (a label at each tip piled up where the tips met).
         self.rec.log_static(
