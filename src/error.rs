@@ -221,7 +221,8 @@ pub enum ConfigError {
     )]
     ShakeFrequency(f64),
     #[error(
-        "frequency = {frequency}: a steady start there asks the free end to swing {tip:.3} string lengths (A/|J₀(2Ω)| with A = {amplitude}), too near the resonance ω = {resonance:.4} for the linear steady state it starts on (at most 0.2); start from rest (--from rest), which shows the resonance grow, or move Ω away from {resonance:.4}, or lower --amplitude"
+        "frequency = {shown}: a steady start there asks the free end to swing {tip:.3} string lengths (A/|J₀(2Ω)| with A = {amplitude}), too near the resonance ω = {resonance:.4} for the linear steady state it starts on (at most 0.2); start from rest (--from rest), which shows the resonance grow, or move Ω away from {resonance:.4}, or lower --amplitude",
+        shown = four_decimals(.frequency)
     )]
     SteadyNearResonance {
         frequency: f64,
@@ -230,9 +231,13 @@ pub enum ConfigError {
         resonance: f64,
     },
     #[error(
-        "sweep = {0}: give two frequencies and optionally a count, Ω₁..Ω₂ or Ω₁..Ω₂:count, with 0 < Ω₁ < Ω₂ ≤ 20 and a count from 2 to 2000 (for example 0.2..5:120)"
+        "sweep = {text}: {wrong}; give Ω₁..Ω₂ or Ω₁..Ω₂:count, with 0 < Ω₁ < Ω₂ ≤ 20 and a count from 2 to 2000 (for example 0.2..5:120)"
     )]
-    Sweep(String),
+    Sweep {
+        text: String,
+        /// Which part is wrong, and how.
+        wrong: String,
+    },
 }
 
 /// Why and when a run stopped producing trustworthy numbers. No value computed after it is
@@ -246,4 +251,14 @@ pub struct Diverged {
     pub time: f64,
     /// What went wrong, with the stability hint where the time step is to blame.
     pub reason: String,
+}
+
+/// `value` to at most four decimals, trailing zeros dropped: a sweep's frequency as typed
+/// (1.16, not the float's 1.1600000000000001).
+fn four_decimals(value: &f64) -> String {
+    let text = format!("{value:.4}");
+    match text.contains('.') {
+        true => text.trim_end_matches('0').trim_end_matches('.').to_owned(),
+        false => text,
+    }
 }

@@ -136,3 +136,34 @@ fn the_energy_is_kept_through_the_final_snap() {
         statistics.fastest_rotation
     );
 }
+
+/// The summary says the fold fully: the free arm runs out at a fall of 1 − πd/2, the free end
+/// falls at least that far, and the snap (the support's largest pull) comes when Calkin &
+/// March's string has fallen all the way (t = 1.198), within 1 %, the deepest fall with it.
+#[test]
+fn the_summary_gives_the_deepest_fall_and_the_snap_when_the_theory_ends() {
+    let plan = rope::RunConfig {
+        method: MethodKind::Midpoint,
+        scene: FOLD,
+        segments: SEGMENTS,
+        duration: 1.6,
+        log_rate: 10.0,
+        ..rope::RunConfig::default()
+    };
+    let run = rope::simulate(&plan).expect("the fold runs");
+    let fold = run.summary.fold.expect("a fold's figures");
+    let ends = fold::time_to_fall(1.0);
+    assert!((fold.arm_limit - (1.0 - std::f64::consts::PI * 0.01)).abs() < 1e-12);
+    assert!(
+        fold.deepest_fall >= fold.arm_limit && fold.deepest_fall < 1.0,
+        "{fold:?}"
+    );
+    let snap = run.summary.max_support_tension_time;
+    for t in [snap, fold.deepest_fall_time] {
+        assert!(
+            (t / ends - 1.0).abs() < 0.01,
+            "{t} against {ends}: {fold:?}"
+        );
+    }
+    assert!(run.summary.human().contains("deepest fall"));
+}

@@ -387,9 +387,9 @@ fn a_sweep_draws_its_curve_writes_its_chart_beside_the_file_and_finds_the_first_
     let outcome = run::run(&args, &session).expect("the sweep is made");
     assert_eq!(outcome.exit_status, 0);
     // The chart and its data beside the recording: a row per frequency.
-    let csv = std::fs::read_to_string(dir.join("s-sweep.csv")).expect("the sweep's CSV");
+    let csv = std::fs::read_to_string(dir.join("s-response.csv")).expect("the sweep's CSV");
     assert_eq!(csv.lines().count(), 1 + 13, "{csv}");
-    for chart in ["s-sweep.png", "s-sweep.svg"] {
+    for chart in ["s-response.png", "s-response.svg"] {
         assert!(dir.join(chart).exists(), "{chart}");
     }
     // The tallest peak is the first resonance's, within a grid step (0.05) of ω₁ = 1.2024.
@@ -412,10 +412,128 @@ fn a_sweep_draws_its_curve_writes_its_chart_beside_the_file_and_finds_the_first_
         .find(|n| n.topic == Topic::Sweep)
         .expect("the sweep's notice");
     assert!(
-        said.text.contains("13 frequencies") && said.text.contains("ω1 = 1.2024"),
+        said.text.contains("13 frequencies") && said.text.contains("ω1 = 1.2024: the largest"),
         "{said}"
     );
+    // One line per resonance, not a summary per frequency; the summary holds every one.
+    assert!(!heard.told(Topic::Summary), "{:?}", heard.notices());
+    assert_eq!(outcome.summary.sweep.len(), 13);
     // The viewer's curve has every frequency.
     let recording = Recording::read(&file);
     assert!(recording.has("sweep/curve") && recording.has("sweep/labels"));
+}
+
+/// A resonance inside a sweep whose grid is too coarse to show its peak (ω₁ = 1.2024 between
+/// Ω = 1, 1.5 and 2) is said as such, with a finer grid to try (it once read "none within
+/// the sweep").
+#[test]
+fn a_resonance_the_sweeps_grid_misses_is_said_with_a_finer_grid() {
+    let dir = scratch("sweep-coarse");
+    let args = run_args(&[
+        "--scene",
+        "shake",
+        "--from",
+        "rest",
+        "--amplitude",
+        "1e-3",
+        "--sweep",
+        "1..2:3",
+        "--duration",
+        "5",
+        "--segments",
+        "20",
+        "--save",
+        dir.join("c.rrd").to_str().unwrap(),
+    ]);
+    let (session, heard) = listened();
+    run::run(&args, &session).expect("the sweep is made");
+    let said = heard
+        .notices()
+        .into_iter()
+        .find(|n| n.topic == Topic::Sweep)
+        .expect("the sweep's notice");
+    assert!(
+        said.text
+            .contains("ω1 = 1.2024: the largest swing shows no peak near it")
+            && said
+                .text
+                .contains("too coarse to place it (--sweep 1.14..1.26:41)"),
+        "{said}"
+    );
+}
+
+/// `rope study`'s list defaults are shown as they are typed (`10,20,50,…`, which `--help`
+/// prints) and parse to the studied methods and the grid's segment counts.
+#[test]
+fn the_studys_list_defaults_are_typed_as_a_user_types_them() {
+    let args = study_args(&[]);
+    assert_eq!(args.methods, rope::methods::MethodKind::STUDIED);
+    assert_eq!(args.segments, [10, 20, 50, 100, 200, 500, 1000]);
+}
+
+/// Each way a `--sweep` can be wrong is named: the count, the "..", either frequency, their
+/// order, the range and the count's bounds, each in its own words.
+#[test]
+fn each_sweep_refusal_names_the_part_that_is_wrong() {
+    for (typed, wrong) in [
+        ("1..2:x", "the count \"x\" is not a whole number"),
+        ("1-2", "no \"..\" between the two frequencies"),
+        ("a..2", "Ω₁ \"a\" is not a number"),
+        ("1..b", "Ω₂ \"b\" is not a number"),
+        ("0..2", "Ω₁ = 0 is not above 0"),
+        ("3..2", "Ω₁ = 3 is not below Ω₂ = 2"),
+        ("1..30", "Ω₂ = 30 is above 20"),
+        ("1..2:1", "the count 1 is not from 2 to 2000"),
+    ] {
+        let args = run_args(&["--scene", "shake", "--sweep", typed]);
+        let err = args.plans().expect_err(typed).to_string();
+        assert!(
+            err.contains(&format!("sweep = {typed}: {wrong};")),
+            "{typed}: {err}"
+        );
+    }
+}
+
+/// A fold wider than its theory's small-gap limit warns, in `rope run` and in `rope study`,
+/// and a study warns of the bends its grid draws too coarsely, as `rope run` does.
+#[test]
+fn a_wide_gap_and_a_coarse_bend_are_warned_of_by_run_and_by_study() {
+    let dir = scratch("fold-warnings");
+    let save = dir.join("w.rrd");
+    let args = run_args(&[
+        "--scene",
+        "fold",
+        "--gap",
+        "0.3",
+        "--segments",
+        "20",
+        "--duration",
+        "0.2",
+        "--save",
+        save.to_str().unwrap(),
+    ]);
+    let (session, heard) = listened();
+    run::run(&args, &session).expect("the fold runs");
+    assert!(heard.told(Topic::WideGap), "{:?}", heard.notices());
+    let out = dir.join("study");
+    let args = study_args(&[
+        "--scene",
+        "fold",
+        "--gap",
+        "0.02",
+        "--segments",
+        "10,20",
+        "--methods",
+        "midpoint",
+        "--dts",
+        "1e-2",
+        "--duration",
+        "0.2",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let (session, heard) = listened();
+    rope::service::study::study(&args, &session).expect("the study runs");
+    assert!(heard.told(Topic::CoarseBend), "{:?}", heard.notices());
+    assert!(!heard.told(Topic::WideGap), "{:?}", heard.notices());
 }

@@ -216,8 +216,11 @@ impl RunArgs {
         })
     }
 
-    /// Frames per time unit of a sweep when --log-rate is not given.
-    pub const SWEEP_LOG_RATE: f64 = 10.0;
+    /// Frames per time unit of a sweep when --log-rate is not given: few, since a sweep's
+    /// figures are measured on the summary's fine grid whatever the frames, and its many runs
+    /// would otherwise fill a recording (the README's 120 frequencies over 40 units each
+    /// wrote 175 MB at 10 a unit).
+    pub const SWEEP_LOG_RATE: f64 = 2.0;
 
     /// Whether several methods are to run side by side.
     pub fn compares(&self) -> bool {

@@ -208,19 +208,46 @@ pub enum StartKind {
 
 /// The frequencies of `--sweep Ω₁..Ω₂[:count]`, evenly spaced, both ends included.
 fn parse_sweep(text: &str) -> Result<Vec<f64>, ConfigError> {
-    let bad = || ConfigError::Sweep(text.to_string());
+    let bad = |wrong: String| ConfigError::Sweep {
+        text: text.to_string(),
+        wrong,
+    };
     let (range, count) = match text.split_once(':') {
-        Some((range, count)) => (range, count.trim().parse::<usize>().map_err(|_| bad())?),
+        Some((range, count)) => (
+            range,
+            count.trim().parse::<usize>().map_err(|_| {
+                bad(format!(
+                    "the count \"{}\" is not a whole number",
+                    count.trim()
+                ))
+            })?,
+        ),
         None => (text, SceneArgs::DEFAULT_SWEEP_COUNT),
     };
-    let (low, high) = range.split_once("..").ok_or_else(bad)?;
-    let (low, high): (f64, f64) = (
-        low.trim().parse().map_err(|_| bad())?,
-        high.trim().parse().map_err(|_| bad())?,
-    );
+    let (low, high) = range
+        .split_once("..")
+        .ok_or_else(|| bad("no \"..\" between the two frequencies".to_owned()))?;
+    let number = |which: &str, typed: &str| {
+        typed
+            .trim()
+            .parse::<f64>()
+            .ok()
+            .filter(|f| f.is_finite())
+            .ok_or_else(|| bad(format!("{which} \"{}\" is not a number", typed.trim())))
+    };
+    let (low, high) = (number("Ω₁", low)?, number("Ω₂", high)?);
     let max = crate::model::scene::SHAKE_FREQUENCY_MAX;
-    if !(low > 0.0 && low < high && high <= max && (2..=2000).contains(&count)) {
-        return Err(bad());
+    if low <= 0.0 {
+        return Err(bad(format!("Ω₁ = {low} is not above 0")));
+    }
+    if low >= high {
+        return Err(bad(format!("Ω₁ = {low} is not below Ω₂ = {high}")));
+    }
+    if high > max {
+        return Err(bad(format!("Ω₂ = {high} is above {max}")));
+    }
+    if !(2..=2000).contains(&count) {
+        return Err(bad(format!("the count {count} is not from 2 to 2000")));
     }
     let spacing = (high - low) / (count - 1) as f64;
     Ok((0..count).map(|i| low + i as f64 * spacing).collect())

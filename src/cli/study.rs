@@ -23,11 +23,20 @@ pub struct StudyArgs {
 
     /// Methods to compare. The graded rods only when named: near the horizontal and over long
     /// runs their spinning end rods cost far more than the study predicts.
-    #[arg(long, value_enum, value_delimiter = ',', default_values_t = MethodKind::STUDIED)]
+    #[arg(
+        long,
+        value_enum,
+        value_delimiter = ',',
+        default_value = "seed,chain,rattle,midpoint"
+    )]
     pub methods: Vec<MethodKind>,
 
     /// Segment counts N.
-    #[arg(long, value_delimiter = ',', default_values_t = [10, 20, 50, 100, 200, 500, 1000])]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "10,20,50,100,200,500,1000"
+    )]
     pub segments: Vec<usize>,
 
     /// Time steps k [default: 1e-6 to 3e-2 in half-decades; with --long-run, each method's

@@ -63,6 +63,12 @@ pub const STEADY_TIP_MAX: f64 = 0.2;
 /// The largest gap a fold can have: at 2/π the half circle takes the whole string.
 pub const FOLD_GAP_MAX: f64 = 2.0 / PI;
 
+/// The widest gap at which a fold's comparisons with Calkin & March's string, a theory for no
+/// gap, are trusted to about 1 %: at N = 200, `midpoint`'s free end was within 0.73 % of its
+/// speed to a fall of 0.75 at d = 0.1, 2.9 % at 0.2, 7.4 % at 0.3 and 19 % at 0.4
+/// (`docs/measurements.md`, "The fold's gap against its theory").
+pub const FOLD_THEORY_GAP: f64 = 0.1;
+
 /// The fewest rods across a fold's gap (d/h) for its bend to be drawn well enough to follow
 /// Calkin & March's prediction: at two, `midpoint`'s free end was within 0.8 % of its
 /// speed to x = 0.75 at N = 50 … 400; below one, up to 11 % off (`examples/fold_bend.rs`,

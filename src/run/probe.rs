@@ -1,8 +1,8 @@
 //! What the summary measures of the motion itself, on a fine grid that no `--log-rate`
 //! moves: every step, or every [`FINE_GRID`](super::trust::FINE_GRID) of a time unit where
 //! the steps are shorter, and the last step. The free fall of a released tip, a mode's
-//! period, a shake's swing and energy balance: figures that would otherwise change with the
-//! frames they were read at.
+//! period, a shake's swing and energy balance, a fold's deepest fall: figures that would
+//! otherwise change with the frames they were read at.
 
 use super::shake_figures::{ShakeFigures, ShakeSample};
 use super::simulate::EnergyBase;
@@ -25,6 +25,20 @@ pub struct FreeFall {
     pub max_gap: f64,
 }
 
+/// How far a fold's free end fell, on the fine grid: its deepest and when, against where the
+/// free arm runs out, a fall of 1 − πd/2 (the bend's half circle holds πd/2 of the chain; past
+/// it the half circle swings down in the snap, and the end may fall further).
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct FoldFall {
+    pub deepest_fall: f64,
+    pub deepest_fall_time: f64,
+    /// 1 − πd/2: where the free arm runs out.
+    pub arm_limit: f64,
+    /// The free end's height at the start, which the fall is measured from.
+    #[serde(skip)]
+    start: f64,
+}
+
 /// The summary's measurements of one run, taken on the fine grid as the run steps.
 #[derive(Clone, Debug)]
 pub struct Probes {
@@ -41,6 +55,8 @@ pub struct Probes {
     crossings: ZeroCrossings,
     /// A shake's swing, its swing at Ω alone and its energy balance.
     pub shake: Option<ShakeFigures>,
+    /// A fold's deepest fall.
+    pub fold: Option<FoldFall>,
 }
 
 impl Probes {
@@ -55,6 +71,7 @@ impl Probes {
             free_fall: None,
             crossings: ZeroCrossings::default(),
             shake: None,
+            fold: None,
         }
     }
 
@@ -89,7 +106,19 @@ impl Probes {
                 };
                 ShakeFigures::push(&mut self.shake, self.scene, sample);
             }
-            Scene::Release { .. } | Scene::Fold { .. } => {}
+            Scene::Fold { gap } => {
+                let y = tip().y;
+                let fold = self.fold.get_or_insert(FoldFall {
+                    deepest_fall: 0.0,
+                    deepest_fall_time: time,
+                    arm_limit: 1.0 - std::f64::consts::PI * gap / 2.0,
+                    start: y,
+                });
+                if y - fold.start > fold.deepest_fall {
+                    (fold.deepest_fall, fold.deepest_fall_time) = (y - fold.start, time);
+                }
+            }
+            Scene::Release { .. } => {}
         }
     }
 

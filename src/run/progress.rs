@@ -65,7 +65,17 @@ impl Progress {
         }
     }
 
-    /// The run has ended: the bar goes.
+    /// No progress shown: a run that is one of many counted elsewhere (a sweep's
+    /// frequencies, on a [`Counter`]).
+    pub fn silent() -> Self {
+        Self {
+            bar: indicatif::ProgressBar::hidden(),
+            plain: false,
+            duration: 0.0,
+            last_line: Mutex::new(Instant::now()),
+        }
+    }
+
     /// Runs `print` with the bar out of the way: a line for the person waiting goes above
     /// the bar, which is redrawn under it.
     pub fn suspend<R>(&self, print: impl FnOnce() -> R) -> R {
@@ -75,6 +85,7 @@ impl Progress {
         }
     }
 
+    /// The run has ended: the bar goes.
     pub fn finish(&self) {
         self.bar.finish_and_clear();
     }

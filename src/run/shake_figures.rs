@@ -44,7 +44,7 @@ pub struct ShakeSample {
 }
 
 /// One frequency of a sweep: what its run measured of the free end.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct SweepPoint {
     /// Ω.
     pub frequency: f64,

@@ -3,8 +3,8 @@
 
 use super::config::RunPlan;
 use super::estimate::Shadow;
-use super::probe::Probes;
-use super::shake_figures::ShakeFigures;
+use super::probe::{FoldFall, Probes};
+use super::shake_figures::{ShakeFigures, SweepPoint};
 use super::simulate::{EstimateOutcome, Outcome, REFERENCE_STEP};
 use super::theory_figures::{FALL_WINDOW, TheoryAt, TheoryFigures};
 use crate::error::Diverged;
@@ -178,10 +178,18 @@ pub struct Summary {
     /// 0.25, 0.5 and 0.75, each against Calkin & March's string (`model::fold`).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub theory: Vec<TheoryAt>,
+    /// For a fold: the free end's deepest fall (on the fine grid) and when, against where the
+    /// free arm runs out, 1 − πd/2; the snap is the largest support tension and its time.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fold: Option<FoldFall>,
     /// For a shake: the free end's largest sideways swing against the linear steady state,
     /// and the energy balance E − E₀ − W, on the fine grid.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub shake: Option<ShakeFigures>,
+    /// For a sweep of the shaking frequency: each frequency's largest sideways swing and its
+    /// swing at Ω alone, in the order run (the other fields are the last frequency's).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub sweep: Vec<SweepPoint>,
     /// Why the recording could not be completed (e.g. the viewer went away), if it could not.
     pub recording_error: Option<String>,
     /// In a run of several methods side by side: the largest distance, at equal arc length,
@@ -221,6 +229,7 @@ impl Summary {
         let free_fall = probes.and_then(|p| p.free_fall);
         let period = probes.and_then(Probes::period);
         let shake = probes.and_then(|p| p.shake);
+        let fold = probes.and_then(|p| p.fold);
         let theory = tip_samples.theory.read();
         let samples: Vec<[f64; 3]> = tip_samples.latest.into();
         let segment_steps = (outcome.steps as f64 * plan.segments as f64).max(1.0);
@@ -268,8 +277,10 @@ impl Summary {
             period_theory: plan.scene.mode_period(),
             free_fall,
             theory,
+            fold,
             shake,
             recording_error,
+            sweep: Vec::new(),
             method_chosen_because: None,
             disagreement: None,
             methods: Vec::new(),
@@ -450,6 +461,16 @@ impl Summary {
                 crate::model::fold::time_to_fall(at.fall),
                 (2.0 * at.fall).sqrt(),
                 each.join("; ")
+            );
+        }
+        if let Some(f) = self.fold {
+            text += &format!(
+                "  deepest fall {:.4} at t = {:.4} (the free arm runs out at a fall of 1 − πd/2 = {:.4}, where the bend's half circle is left to swing down); the snap, the support's largest pull: {:.4} at t = {:.4}\n",
+                f.deepest_fall,
+                f.deepest_fall_time,
+                f.arm_limit,
+                self.max_support_tension,
+                self.max_support_tension_time
             );
         }
         if let Some(f) = self.shake {

@@ -17,7 +17,7 @@ use crate::recording::error::OutputError;
 use crate::recording::logger::RopeLogger;
 use crate::recording::table::Tables;
 use crate::recording::viewer_sinks::ViewerLink;
-use crate::run::progress::Progress;
+use crate::run::progress::{Counter, Progress};
 use crate::run::shake_figures::SweepPoint;
 use crate::run::{Status, Summary};
 use crate::study::sweep_chart;
@@ -124,6 +124,7 @@ pub fn run(args: &RunArgs, session: &Session) -> Result<Outcome, ServiceError> {
     }
     if swept.points.len() >= 2 {
         tell(finish_sweep(args, &swept));
+        summary.sweep = swept.points.clone();
     }
     if let Some(reason) = lost_viewer(&output) {
         summary.recording_error = Some(format!(
@@ -210,7 +211,7 @@ struct Swept {
 fn finish_sweep(args: &RunArgs, swept: &Swept) -> notices::Notice {
     let chart = args.output.save.as_deref().map(|save| {
         let stem = save.file_stem().unwrap_or_default().to_string_lossy();
-        save.with_file_name(format!("{stem}-sweep"))
+        save.with_file_name(format!("{stem}-response"))
     });
     let written = match &chart {
         Some(chart) => {
@@ -231,6 +232,7 @@ fn finish_sweep(args: &RunArgs, swept: &Swept) -> notices::Notice {
         analysis::peaks(&curve)
     };
     super::sweep_notices::sweep(
+        SweepPoint::span(&swept.points),
         swept.points.len(),
         &peaks(|p| p.largest),
         &peaks(|p| p.driven),
@@ -256,11 +258,17 @@ fn run_passes(
     let mut last = None;
     let mut strayed: Strayed = None;
     let mut pass = 0;
+    // A sweep counts its frequencies on one bar, and says what it found once, at the end.
+    let counter =
+        sweep.then(|| Counter::new(plans.len() as u64, "rope run --sweep", "frequencies"));
     'passes: while args.passes().is_none_or(|passes| pass < passes) {
         pass += 1;
         for planned in plans {
             let plan = &planned.plan;
-            let progress = Progress::new(plan.duration);
+            let progress = match sweep {
+                true => Progress::silent(),
+                false => Progress::new(plan.duration),
+            };
             let on_frame = |frame: &crate::run::Frame| {
                 progress.at(frame.time);
                 if let Some(passed) = frame.tolerance_exceeded {
@@ -318,7 +326,9 @@ fn run_passes(
                         .context("logging the sweep")?;
                 }
             }
-            if several {
+            if let Some(counter) = counter.as_ref().filter(|_| pass == 1) {
+                counter.inc();
+            } else if several && !sweep {
                 // Each run of several says all it has as it ends; the last is not repeated.
                 session.listener.tell(summary_notice(&summary));
             }
@@ -345,6 +355,9 @@ fn run_passes(
                 break 'passes;
             }
         }
+    }
+    if let Some(counter) = counter {
+        counter.finish();
     }
     Ok((last.context("no run was made")?, strayed, swept))
 }

@@ -53,6 +53,16 @@ pub fn study(args: &StudyArgs, session: &Session) -> Result<(), ServiceError> {
         check_writable_file("save", path)?;
     }
     let spec = &plan.spec;
+    // What `rope run` warns of a fold, the study warns of its grid.
+    for notice in [
+        super::notices::coarse_bends(spec.scene, &spec.segments),
+        super::notices::wide_gap(spec.scene),
+    ]
+    .into_iter()
+    .flatten()
+    {
+        session.listener.tell(notice);
+    }
     if plan.cost.seconds > cost::ANNOUNCE_SECONDS {
         say(
             session,
