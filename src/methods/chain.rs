@@ -47,6 +47,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     // 0.3 of the limit (5e-4 at N = 100): RK4's energy loss stays below 1e-6 over 10 time
     // units there (tests/chain_physics.rs); the state adds substeps where the whip needs them.
     default_step_fraction: 0.3,
+    accurate_step: None,
     refuses_unstable_step: false,
     // The limit itself, where substeps start (the state adds them where the whip needs them):
     // the worst tip error to t = 3 within 2.3 % of the default step's in every scene and N

@@ -251,6 +251,10 @@ pub struct Descriptor {
     /// The default time step, as a fraction of the stability limit (then rounded down to
     /// 1, 2 or 5 × 10^k).
     pub default_step_fraction: f64,
+    /// For a method stable at any step, the step its tip's accuracy needs, which the default
+    /// step is never below: the limit shrinks as h, where what the tip needs shrinks slower.
+    /// `None`: the default is the fraction of the limit alone.
+    pub accurate_step: Option<AccurateStep>,
     /// Whether a time step past the limit is refused (unless `--allow-unstable`): true for a
     /// method that blows up there, false for one that stays stable and only costs more.
     pub refuses_unstable_step: bool,
@@ -292,6 +296,22 @@ pub struct Descriptor {
     pub plannable: fn(&Scene, f64) -> bool,
 }
 
+/// The step a method's tip needs at N segments: `times_h` × h (its time error grows as
+/// (k N)² against a spatial error that falls as h), at most `largest`, rounded down to 1, 2 or
+/// 5 × 10^k.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AccurateStep {
+    pub times_h: f64,
+    pub largest: f64,
+}
+
+impl AccurateStep {
+    /// The step at `segments` segments.
+    pub fn at(&self, segments: usize) -> f64 {
+        round_down_nicely((self.times_h / segments as f64).min(self.largest))
+    }
+}
+
 /// When a method blew up at one N, over the steps of the blow-up map.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BlowUp {
@@ -322,7 +342,12 @@ impl Descriptor {
 
     /// The default time step at `segments` segments.
     pub fn default_dt(&self, segments: usize) -> f64 {
-        round_down_nicely(self.default_step_fraction * self.stability_limit(segments))
+        let limited =
+            round_down_nicely(self.default_step_fraction * self.stability_limit(segments));
+        match self.accurate_step {
+            Some(a) => limited.max(a.at(segments)),
+            None => limited,
+        }
     }
 
     /// The step `--tolerance` runs at `segments` segments:

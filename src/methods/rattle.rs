@@ -74,6 +74,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     // A fifth of the limit (5e-4 at N = 100): the energy error of the 30° release stays near
     // 2e-6 over 100 time units there, against 1.2e-5 at 1e-3.
     default_step_fraction: 0.2,
+    accurate_step: None,
     refuses_unstable_step: false,
     // At the limit its whip from the horizontal errs 17 % more than at the default step
     // (N = 64, `scripts/tolerance-step.sh`): its tolerance keeps the default.

@@ -54,6 +54,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     // Half the limit: the error is dominated by the first order in h, a smaller k buys
     // nothing.
     default_step_fraction: 0.5,
+    accurate_step: None,
     refuses_unstable_step: true,
     // The scheme blows up past its limit: its tolerance runs at the default step.
     tolerance_step_fraction: None,

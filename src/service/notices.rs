@@ -271,11 +271,21 @@ pub fn announce(asked: &Asked, plans: &[Planned]) -> Vec<Notice> {
                 ),
             ));
         } else if asked.tolerance.is_none() && !asked.dt_given {
+            let why = match method.accurate_step {
+                Some(a) if plan.dt > method.default_step_fraction * limit => format!(
+                    "what its tip needs, {} h at most {:e}, above {} of its estimated stability limit {limit:.3e}: {}",
+                    a.times_h, a.largest, method.default_step_fraction, method.past_limit
+                ),
+                _ => format!(
+                    "estimated stability limit {limit:.3e}: {}",
+                    method.past_limit
+                ),
+            };
             notices.push(Notice::new(
                 Topic::DefaultStep,
                 format!(
-                    "rope: --dt not given: using k = {:.3e} for the {} method at N = {} (estimated stability limit {limit:.3e}: {})",
-                    plan.dt, plan.method, plan.segments, method.past_limit
+                    "rope: --dt not given: using k = {:.3e} for the {} method at N = {} ({why})",
+                    plan.dt, plan.method, plan.segments
                 ),
             ));
         } else if plan.dt > limit && !method.refuses_unstable_step {
