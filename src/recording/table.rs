@@ -299,8 +299,8 @@ pub struct Tables {
 }
 
 impl Tables {
-    /// Creates the tables at `path` (the series) and beside it (the profiles), for runs of
-    /// `scene_shakes`: whether the support is shaken, which adds the shake's columns.
+    /// Creates the tables at `path` (the series) and beside it (the profiles); `shakes` (a
+    /// run whose support is shaken) adds the shake's columns to the series.
     pub fn create(path: &Path, shakes: bool) -> Result<Self, TableError> {
         let format = Format::of(path)?;
         let mut series_columns: Vec<(&'static str, &str)> = SERIES.to_vec();
