@@ -1,11 +1,10 @@
 //! Running a scene: what a run is asked to do ([`config`]), the pure driver that takes a
-//! method to its final time and makes frames ([`simulate`]), when its numbers can no longer
-//! be trusted ([`trust`]), the live error estimate from a shadow at half the segments
-//! ([`estimate`]), the two-thread pipeline that hands the frames to a [`sink::FrameSink`]
-//! ([`pipeline`]), several methods side by side in lockstep ([`lanes`]), and what a run
-//! reports ([`summary`]; with the program, `progress`). Nothing here knows where frames end
-//! up.
-
+//! method to its final time and makes frames ([`simulate`](mod@simulate)), when its numbers
+//! can no longer be trusted ([`trust`]), the live error estimate from a shadow at half the
+//! segments ([`estimate`]), the two-thread pipeline that hands the frames to a
+//! [`sink::FrameSink`] ([`pipeline`]), several methods side by side in lockstep ([`lanes`]),
+//! what a run reports ([`summary`]; with the program, `progress`), and a whole run in one
+//! call ([`whole`]). Nothing here knows where frames end up.
 pub mod config;
 pub mod cost;
 pub mod estimate;
