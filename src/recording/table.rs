@@ -197,7 +197,7 @@ fn csv_number(value: f64) -> String {
 
 /// Where one table's rows go.
 enum Writer {
-    Csv(csv::Writer<File>),
+    Csv(Box<csv::Writer<File>>),
     Parquet(Box<parquet::arrow::ArrowWriter<File>>),
 }
 
@@ -226,7 +226,7 @@ impl Table {
                 writer
                     .write_record(&header)
                     .map_err(|e| write_error(&path, e))?;
-                Writer::Csv(writer)
+                Writer::Csv(Box::new(writer))
             }
             Format::Parquet => {
                 let properties = parquet::file::properties::WriterProperties::builder()
