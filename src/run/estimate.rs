@@ -136,12 +136,12 @@ impl Shadow {
         if !self.advance_to(step) {
             return None;
         }
-        let mut shadow_tip = [geometry::tip_of(
+        let shadow_tip = crate::model::support::tip_in_the_room(
+            self.method.support(),
             self.method.angles(),
             self.method.lengths(),
-        )];
-        crate::model::support::into_the_room(self.method.support(), &mut shadow_tip);
-        let gap = (tip - shadow_tip[0]).norm();
+        );
+        let gap = (tip - shadow_tip).norm();
         Some(TipEstimate {
             estimate: gap * self.richardson,
             bound: gap * self.first_order,
