@@ -71,17 +71,7 @@ pub fn plan_scene(request: &RunRequest, scene: Scene) -> Result<Planned, ConfigE
         error_estimate: request.error_estimate,
         tolerance: request.tolerance,
     };
-    let (config, choice, pilots) = match request.tolerance {
-        // A step the user did not set does not refuse the frames they asked for: past the
-        // default step's rate, a frame at every step (the step does not follow the frames).
-        None if request.dt.is_none() && !compares => {
-            let steps = 1.0 / request.method.default_dt(request.segments.max(1));
-            let log_rate = match steps.is_finite() && steps > 0.0 {
-                true => request.log_rate.min(steps),
-                false => request.log_rate,
-            };
-            (RunConfig { log_rate, ..asked }, None, None)
-        }
+    let (mut config, choice, pilots) = match request.tolerance {
         None => (asked, None, None),
         Some(_) if matches!(scene, Scene::Fold { .. }) => {
             return Err(ConfigError::ToleranceScene {
@@ -102,11 +92,10 @@ pub fn plan_scene(request: &RunRequest, scene: Scene) -> Result<Planned, ConfigE
                 pilot::choose(eps, &scene, request.duration, request.limits.memory())?;
             // A loose tolerance may choose a step longer than the default frame
             // interval: then a frame at every step the estimate's shadow shares, unless
-            // --log-rate asked for more; never more than a frame a step (the frames fall
-            // on the steps: the step does not follow the frames).
+            // --log-rate asked for more (never more than a frame a step: below).
             let shared = 1.0 / (choice.dt * crate::run::estimate::STRIDE as f64);
             let log_rate = match request.log_rate_asked {
-                true => request.log_rate.min(1.0 / choice.dt),
+                true => request.log_rate,
                 false => asked.log_rate.min(shared),
             };
             let chosen = RunConfig {
@@ -119,6 +108,14 @@ pub fn plan_scene(request: &RunRequest, scene: Scene) -> Result<Planned, ConfigE
             (chosen, Some(choice), Some(pilots))
         }
     };
+    // A step the user did not set (the default, or the one --tolerance chose) does not
+    // refuse the frames they asked for: past its rate, a frame at every step (the frames
+    // fall on the steps: the step does not follow the frames).
+    let step_not_set = choice.is_some() || (request.dt.is_none() && !compares);
+    let steps = 1.0 / config.step();
+    if step_not_set && steps.is_finite() && steps > 0.0 {
+        config.log_rate = config.log_rate.min(steps);
+    }
     let lane = |method: MethodKind| {
         RunConfig {
             method,

@@ -101,9 +101,7 @@ impl RunConfig {
     pub fn validate(&self) -> Result<RunPlan, ConfigError> {
         let method = self.method;
         let segments = self.segments;
-        let dt = self
-            .dt
-            .unwrap_or_else(|| method.default_dt(segments.max(1)));
+        let dt = self.step();
         let frame_grid = self.shared_frames.then_some(SHARED_FRAME_GRID);
         let dt = match frame_grid {
             Some(grid) if dt.is_finite() && dt > 0.0 => step_on_frame_grid(dt, grid),
@@ -175,6 +173,13 @@ impl RunConfig {
             frame_grid,
             cost,
         })
+    }
+
+    /// The time step asked for: `dt`, or the method's default at N (before a run side by side
+    /// brings it onto the shared grid).
+    pub fn step(&self) -> f64 {
+        self.dt
+            .unwrap_or_else(|| self.method.default_dt(self.segments.max(1)))
     }
 
     /// Refuses a run whose memory exceeds the limit, or a finite one longer than a day
