@@ -106,66 +106,84 @@ pub fn profiles_path(series: &Path) -> PathBuf {
     series.with_file_name(format!("{stem}-profiles.{ext}"))
 }
 
+/// A column's values in one batch of rows.
+enum Values {
+    Text(Vec<String>),
+    Number(Vec<Option<f64>>),
+}
+
 /// Columns of one batch of rows, in a table's order.
 struct Batch {
-    texts: Vec<(&'static str, Vec<String>)>,
-    numbers: Vec<(&'static str, Vec<Option<f64>>)>,
-    /// Each column's place: a text's (true) or a number's, by index, in the table's order.
-    order: Vec<(bool, usize)>,
+    columns: Vec<(&'static str, Values)>,
 }
 
 impl Batch {
+    /// Empty columns named as `columns`, those named in `texts` text, the others numbers.
     fn new(columns: &[(&'static str, &str)], texts: &[&str]) -> Self {
-        let mut batch = Self {
-            texts: Vec::new(),
-            numbers: Vec::new(),
-            order: Vec::new(),
-        };
-        for &(name, _) in columns {
-            if texts.contains(&name) {
-                batch.order.push((true, batch.texts.len()));
-                batch.texts.push((name, Vec::new()));
-            } else {
-                batch.order.push((false, batch.numbers.len()));
-                batch.numbers.push((name, Vec::new()));
+        let columns = columns
+            .iter()
+            .map(|&(name, _)| match texts.contains(&name) {
+                true => (name, Values::Text(Vec::new())),
+                false => (name, Values::Number(Vec::new())),
+            })
+            .collect();
+        Self { columns }
+    }
+
+    /// Adds a row: `texts` to the text columns and `numbers` to the number columns, each in
+    /// the table's order.
+    fn push<'a>(
+        &mut self,
+        texts: impl IntoIterator<Item = &'a str>,
+        numbers: impl IntoIterator<Item = Option<f64>>,
+    ) {
+        let (mut texts, mut numbers) = (texts.into_iter(), numbers.into_iter());
+        for (_, values) in &mut self.columns {
+            match values {
+                Values::Text(v) => v.push(texts.next().unwrap_or_default().to_owned()),
+                Values::Number(v) => v.push(numbers.next().flatten()),
             }
         }
-        batch
     }
 
     fn len(&self) -> usize {
-        self.texts
-            .first()
-            .map(|c| c.1.len())
-            .or_else(|| self.numbers.first().map(|c| c.1.len()))
-            .unwrap_or(0)
+        match self.columns.first() {
+            Some((_, Values::Text(v))) => v.len(),
+            Some((_, Values::Number(v))) => v.len(),
+            None => 0,
+        }
     }
 
     fn clear(&mut self) {
-        self.texts.iter_mut().for_each(|c| c.1.clear());
-        self.numbers.iter_mut().for_each(|c| c.1.clear());
+        for (_, values) in &mut self.columns {
+            match values {
+                Values::Text(v) => v.clear(),
+                Values::Number(v) => v.clear(),
+            }
+        }
     }
 
     fn schema(&self) -> Arc<Schema> {
         let fields: Vec<Field> = self
-            .order
+            .columns
             .iter()
-            .map(|&(text, i)| match text {
-                true => Field::new(self.texts[i].0, DataType::Utf8, false),
-                false => Field::new(self.numbers[i].0, DataType::Float64, true),
+            .map(|(name, values)| match values {
+                Values::Text(_) => Field::new(*name, DataType::Utf8, false),
+                Values::Number(_) => Field::new(*name, DataType::Float64, true),
             })
             .collect();
         Arc::new(Schema::new(fields))
     }
 
-    fn record_batch(&self, schema: Arc<Schema>) -> Result<RecordBatch, String> {
+    /// The rows gathered so far as Arrow arrays, the batch left empty.
+    fn take_record_batch(&mut self, schema: Arc<Schema>) -> Result<RecordBatch, String> {
         let arrays: Vec<ArrayRef> = self
-            .order
-            .iter()
-            .map(|&(text, i)| -> ArrayRef {
-                match text {
-                    true => Arc::new(StringArray::from(self.texts[i].1.clone())),
-                    false => Arc::new(Float64Array::from(self.numbers[i].1.clone())),
+            .columns
+            .iter_mut()
+            .map(|(_, values)| -> ArrayRef {
+                match values {
+                    Values::Text(v) => Arc::new(StringArray::from(std::mem::take(v))),
+                    Values::Number(v) => Arc::new(Float64Array::from(std::mem::take(v))),
                 }
             })
             .collect();
@@ -174,11 +192,11 @@ impl Batch {
 
     /// Row `r` as CSV fields (an empty field for a missing number).
     fn csv_row(&self, r: usize) -> Vec<String> {
-        self.order
+        self.columns
             .iter()
-            .map(|&(text, i)| match text {
-                true => self.texts[i].1[r].clone(),
-                false => self.numbers[i].1[r].map_or(String::new(), csv_number),
+            .map(|(_, values)| match values {
+                Values::Text(v) => v[r].clone(),
+                Values::Number(v) => v[r].map_or(String::new(), csv_number),
             })
             .collect()
     }
@@ -260,9 +278,10 @@ impl Table {
                 w.flush().map_err(|e| write_error(&self.path, e))?;
             }
             Writer::Parquet(w) => {
+                let schema = self.batch.schema();
                 let batch = self
                     .batch
-                    .record_batch(self.batch.schema())
+                    .take_record_batch(schema)
                     .map_err(|e| write_error(&self.path, e))?;
                 w.write(&batch).map_err(|e| write_error(&self.path, e))?;
             }
@@ -346,25 +365,17 @@ impl Tables {
             frame.error_estimate.map(|e| e.tip),
             Some(support.map_or(0.0, |s| s.position)),
         ];
-        let shake = [support.map(|s| s.work), frame.balance];
-        let series = &mut self.series.batch;
-        series.texts[0].1.push(scene.clone());
-        series.texts[1].1.push(method.to_owned());
-        let shown = if self.shake { &shake[..] } else { &[][..] };
-        for (column, value) in series.numbers.iter_mut().zip(numbers.iter().chain(shown)) {
-            column.1.push(*value);
-        }
+        let shake = self
+            .shake
+            .then_some([support.map(|s| s.work), frame.balance]);
+        let texts = [scene.as_str(), method];
+        self.series.batch.push(
+            texts,
+            numbers.into_iter().chain(shake.into_iter().flatten()),
+        );
         let profiles = &mut self.profiles.batch;
         let mut row = |s: f64, at: Point, tension: f64| {
-            profiles.texts[0].1.push(scene.clone());
-            profiles.texts[1].1.push(method.to_owned());
-            for (column, value) in profiles
-                .numbers
-                .iter_mut()
-                .zip([frame.time, s, at.x, at.y, tension])
-            {
-                column.1.push(Some(value));
-            }
+            profiles.push(texts, [frame.time, s, at.x, at.y, tension].map(Some));
         };
         let support_point = frame.nodes.first().copied().unwrap_or_else(Point::origin);
         row(0.0, support_point, frame.support_tension);
