@@ -10,18 +10,21 @@
 //! change), and how far a cubic through its own steps misses its tip between them (against
 //! the run at k/6 at its own step nearest each 1/3 000).
 //!
-//! `cargo run --release --example tolerance_instants -- [EPS,EPS…] [ANGLE,ANGLE…] [DURATION]`:
+//! `cargo run --release --example tolerance_instants -- [EPS,EPS…] [SCENE,SCENE…] [DURATION]`:
 //! by default the fourteen runs of issue 61, 20° to 80° at 1e-3 and 1e-4, to t = 3, against
-//! `assets/tolerance-check/references.csv`. Past t = 3 (where those end) each angle's
-//! reference is computed as the tolerance check computes one, refined towards an own error of
-//! 1e-5 by one doubling at most (runs up to N = 6400: minutes an angle). Prints the two tables
-//! in Markdown.
+//! `assets/tolerance-check/references.csv`. A scene is a release angle (`40`), a fold by its
+//! gap (`fold=0.02`) or a shake from its steady state (`shake=2/1e-3`, frequency and
+//! amplitude). Past t = 3 (where those end), and for a fold or a shake, each scene's reference
+//! is computed as the tolerance check computes one, of the method the rule would choose there
+//! ([`reference_method`]), refined towards an own error of 1e-5 by one doubling at most (runs
+//! up to N = 6400: minutes a scene; a shake's from N = 128, towards a tenth of the smallest
+//! EPS, two doublings at most). Prints the two tables in Markdown.
 
-use rope::model::Scene;
+use rope::model::{Scene, ShakeStart};
 use rope::plan::pilot;
 use rope::study::read_reference::{CheckReference, read_all};
 use rope::study::tip_reference::{ConvergedTip, LOG_RATE, TipReference};
-use rope::study::tolerance_check::{Cell, JUDGE_RATE, measure, reference_method};
+use rope::study::tolerance_check::{Cell, JUDGE_RATE, REFERENCE_MARGIN, measure, reference_method};
 use rope::study::trajectory::{Trajectory, frame_times};
 use std::path::PathBuf;
 use std::time::Instant;
@@ -45,19 +48,50 @@ fn list(arg: Option<String>, default: &[f64]) -> anyhow::Result<Vec<f64>> {
     }
 }
 
+/// A scene as the command line names it here: a release angle in degrees (`40`), a fold by its
+/// gap (`fold=0.02`), or a shake from its steady state by its frequency and amplitude
+/// (`shake=2/1e-3`).
+fn scene(text: &str) -> anyhow::Result<Scene> {
+    let number = |v: &str| {
+        v.trim()
+            .parse::<f64>()
+            .map_err(|e| anyhow::anyhow!("{text:?}: {e}"))
+    };
+    Ok(match text.trim().split_once('=') {
+        None => Scene::Release {
+            angle_deg: number(text)?,
+        },
+        Some(("fold", gap)) => Scene::Fold { gap: number(gap)? },
+        Some(("shake", rest)) => {
+            let (frequency, amplitude) = rest
+                .split_once('/')
+                .ok_or_else(|| anyhow::anyhow!("{text:?}: shake=FREQUENCY/AMPLITUDE"))?;
+            Scene::Shake {
+                frequency: number(frequency)?,
+                amplitude: number(amplitude)?,
+                start: ShakeStart::Steady,
+            }
+        }
+        Some(_) => anyhow::bail!("{text:?}: an angle, fold=GAP or shake=FREQUENCY/AMPLITUDE"),
+    })
+}
+
 fn main() -> anyhow::Result<()> {
     let mut args = std::env::args().skip(1);
     let tolerances = list(args.next(), &[1e-3, 1e-4])?;
-    let angles = list(args.next(), &[20.0, 30.0, 40.0, 50.0, 60.0, 70.0, 80.0])?;
-    let scenes: Vec<Scene> = angles
-        .iter()
-        .map(|&angle_deg| Scene::Release { angle_deg })
-        .collect();
+    let scenes: Vec<Scene> = match args.next() {
+        None => [20.0, 30.0, 40.0, 50.0, 60.0, 70.0, 80.0]
+            .map(|angle_deg| Scene::Release { angle_deg })
+            .to_vec(),
+        Some(text) => text.split(',').map(scene).collect::<anyhow::Result<_>>()?,
+    };
     let duration = match args.next() {
         Some(text) => text.parse().map_err(|e| anyhow::anyhow!("{text:?}: {e}"))?,
         None => 3.0,
     };
-    let references: Vec<CheckReference> = if duration <= DURATION_READ {
+    let smallest = tolerances.iter().copied().fold(f64::INFINITY, f64::min);
+    let releases = scenes.iter().all(|s| matches!(s, Scene::Release { .. }));
+    let references: Vec<CheckReference> = if releases && duration <= DURATION_READ {
         read_all(&[PathBuf::from(REFERENCES)], &scenes, duration)?
             .into_iter()
             .map(CheckReference::Read)
@@ -67,7 +101,14 @@ fn main() -> anyhow::Result<()> {
             .iter()
             .map(|scene| {
                 let method = reference_method(scene, duration);
-                let r = TipReference::refined_by(method, scene, 1600, 3200, 1e-5, duration)?;
+                // A shake's error is small and falls at second order from few rods: from
+                // N = 128 (runs at 64, 128, 256), refined until it can judge the smallest EPS
+                // (its own error a tenth of it), twice at most.
+                let (from, most, target) = match scene {
+                    Scene::Shake { .. } => (128, 512, 1e-5f64.min(smallest * REFERENCE_MARGIN)),
+                    _ => (1600, 3200, 1e-5),
+                };
+                let r = TipReference::refined_by(method, scene, from, most, target, duration)?;
                 eprintln!(
                     "{scene}: reference of the {method} method, N = {} (order {:.2}), own error {:.1e} at every 1/{JUDGE_RATE}",
                     r.segments, r.order, r.own_error

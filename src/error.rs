@@ -206,11 +206,15 @@ pub enum ConfigError {
     )]
     FoldGap(f64),
     #[error(
-        "tolerance: --tolerance does not serve the {scene} scene: its error models and atlas are measured on releases and modes, {why}"
+        "duration = {duration}: --tolerance serves the fold over its fall, to the snap at t = {snap:.4} (gap {gap}), when the free arm has run out and the bend whips round, the end at {speed:.1} string lengths a unit; past it the tip's path turns on the bend's last rods, which no N within reach draws to {tolerance:e} (docs/measurements.md); ask --duration {within} or less, or leave out --tolerance to watch the snap and after (--method midpoint, --segments at least 2 / gap)",
+        within = (.snap * 100.0).floor() / 100.0
     )]
-    ToleranceScene {
-        scene: &'static str,
-        why: &'static str,
+    ToleranceFoldPastSnap {
+        tolerance: f64,
+        duration: f64,
+        gap: f64,
+        snap: f64,
+        speed: f64,
     },
     #[error(
         "amplitude = {0}: the shaken support's amplitude must be more than 0 and at most 0.05 string lengths (the theory it is held against is linear); try 0.001 to 0.01"

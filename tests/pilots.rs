@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::cli::{Scratch, rope, summary};
+use common::cli::run_judged;
 use rope::methods::MethodKind;
 use rope::model::{Point, Scene};
 use rope::plan::tolerance;
@@ -28,27 +28,15 @@ fn worst_tip_error(samples: &serde_json::Value, reference: impl Fn(f64) -> Point
 }
 
 /// Runs `rope run` with `--tolerance` (to t = 3 unless `flags` give a `--duration`) and returns
-/// the summary and what it said.
+/// the summary and what it said (exit 0, or 4 where the live estimate's first-order bound
+/// passed EPS: these tests judge the choice themselves).
 fn tolerance_run(name: &str, flags: &[&str]) -> (serde_json::Value, String) {
-    let dir = Scratch::new(name);
-    let (rrd, json) = (dir.path("t.rrd"), dir.path("t.json"));
     let mut args = vec!["run"];
     if !flags.contains(&"--duration") {
         args.extend_from_slice(&["--duration", "3"]);
     }
     args.extend_from_slice(flags);
-    args.extend_from_slice(&[
-        "--save",
-        rrd.to_str().unwrap(),
-        "--summary",
-        json.to_str().unwrap(),
-    ]);
-    let out = rope(&args);
-    let said = String::from_utf8_lossy(&out.stderr).into_owned();
-    // 0, or 4 where the live estimate's first-order bound passed EPS: the run ran either way,
-    // and these tests judge its choice themselves.
-    assert!(matches!(out.status.code(), Some(0 | 4)), "{said}");
-    (summary(&json), said)
+    run_judged(name, &args)
 }
 
 #[test]

@@ -46,9 +46,10 @@ pub struct RunArgs {
 
     /// Choose method, segments and time step for a tip-position error of at most EPS (string
     /// lengths) over the whole run, at every instant whatever --log-rate says: pilot runs of the
-    /// scene at N = 16, 32, 64 measure its own error (as far as measuring costs less than it
-    /// can save), beside the committed error models (the release atlas, measured at 60 frames a
-    /// unit: between the frames the choice may miss, see the README); prints what the pilots
+    /// scene at N = 16, 32, 64 (a fold's from 16 / gap) measure its own error (as far as
+    /// measuring costs less than it can save), beside the committed error models of releases
+    /// and modes (the release atlases, measured at every 1/3000 of a time unit to t = 3); a
+    /// fold is served to its snap, a shake by its pilots alone. Prints what the pilots
     /// measured, the choice, its predicted error and cost. The choice never depends on
     /// --log-rate or where the run goes. The run then watches its live error estimate at every
     /// step it shares with its shadow, at first order (a whip's), says when it passes EPS,

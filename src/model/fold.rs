@@ -55,6 +55,19 @@ pub fn time_to_fall(x: f64) -> f64 {
     h / 3.0 * (f(0.0) + inner + f(end))
 }
 
+/// How far the free end has fallen when its arm runs out, 1 − πd/2 for ends `gap` = d apart:
+/// the half circle at the bottom, πd/2 of chain, is all that is left of the falling arm.
+pub fn arm_runs_out(gap: f64) -> f64 {
+    1.0 - std::f64::consts::PI * gap / 2.0
+}
+
+/// The snap: when the free arm runs out ([`arm_runs_out`]) and the bend whips round, at
+/// [`time_to_fall`] of it (1.1944 for d = 0.02). Up to it the fall is smooth; from it on the
+/// end's speed is [`speed`] there (5.6 string lengths a unit for d = 0.02) and its path is set by the bend's last rods.
+pub fn snap_time(gap: f64) -> f64 {
+    time_to_fall(arm_runs_out(gap))
+}
+
 /// How far the free end has fallen at time `t` (the inverse of [`time_to_fall`], by
 /// bisection): 1 from the time the chain hangs straight on.
 pub fn fall_at(t: f64) -> f64 {

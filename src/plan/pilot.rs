@@ -15,13 +15,32 @@ use super::tolerance::{self, Choice, Committed, Source};
 use crate::error::{ConfigError, Diverged};
 use crate::methods::MethodKind;
 use crate::methods::error_model::ErrorModel;
-use crate::model::Scene;
+use crate::model::{Scene, fold};
 use crate::run::cost::{self, Cost};
 use crate::run::simulate::{self, Options};
 use std::time::Instant;
 
 /// The pilots' segment counts: three levels, so that the order is observed, not assumed.
 pub const LEVELS: [usize; 3] = [16, 32, 64];
+
+/// The pilots' segment counts for `scene`: [`LEVELS`], but for a fold, whose bend must be
+/// drawn before its error shrinks at an order the pilots can read: from sixteen rods across
+/// the gap (eight in the shadow at N/2), N₀ = ⌈16 / gap⌉, then 2N₀ and 4N₀ (800, 1 600 and
+/// 3 200 for a gap of 0.02). Coarser, the error has not reached its order and the estimate
+/// reads less than it: from a gap of 0.02 to t = 1.18 the tip's error at every step is 2.7e-3
+/// at N = 200, 1.7e-3 at 400 and 6.9e-4 at 800 (falling 1.6, 2.5, then 3.4 times a
+/// doubling), and the live estimate's first-order bound is 0.58 of the error at eight rods
+/// across the gap, 1.5 times it from sixteen (both gaps measured, 0.02 and 0.04:
+/// `cargo run --release --example fold_levels`, docs/measurements.md).
+pub fn levels(scene: &Scene) -> [usize; 3] {
+    match *scene {
+        Scene::Fold { gap } => {
+            let first = ((16.0 / gap).ceil() as usize).max(LEVELS[0]);
+            [first, 2 * first, 4 * first]
+        }
+        _ => LEVELS,
+    }
+}
 
 /// The longest simulated time a pilot runs: a long run is judged on its opening stretch (its
 /// live estimate goes on watching the rest).
@@ -218,8 +237,9 @@ fn climb(
     let mut pilots: Vec<Pilot> = tolerance::startable(scene, duration)
         .map(Pilot::new)
         .collect();
+    let levels = levels(scene);
     pilots.sort_by(|a, b| {
-        let cost = |p: &Pilot| level_seconds(p.method, LEVELS[0], duration);
+        let cost = |p: &Pilot| level_seconds(p.method, levels[0], duration);
         cost(a).total_cmp(&cost(b))
     });
     for i in 1..pilots.len() {
@@ -238,7 +258,7 @@ fn climb(
     // Predicted, not measured, so that the same command makes the same choice on any machine
     // and under any load.
     let mut spent = 0.0;
-    for segments in LEVELS {
+    for segments in levels {
         for i in 0..pilots.len() {
             let pilot = &mut pilots[i];
             if pilot.diverged.is_some() || pilot.measured_by.is_some() {
@@ -271,7 +291,8 @@ fn climb(
                 Some(_) => None,
             };
             // Every model as it now stands: a method's older choice goes with its older model.
-            let modelled = cheapest_modelled(eps, duration, models, &pilots, &seconds, fits);
+            let modelled =
+                cheapest_modelled(eps, duration, levels[0], models, &pilots, &seconds, fits);
             // Past the committed models' window, what the pilots measured rules.
             best = match (modelled, by_committed) {
                 (Some(m), Some(c)) if c.seconds < m.seconds && models.covers(c.choice.method) => {
@@ -285,11 +306,12 @@ fn climb(
     (pilots, best)
 }
 
-/// The cheapest run, by `seconds`, that the pilots' models allow (each method's
-/// [`tighter_model`]) and that `fits`.
+/// The cheapest run, by `seconds`, of at least `fewest` segments (the pilots' first level),
+/// that the pilots' models allow (each method's [`tighter_model`]) and that `fits`.
 fn cheapest_modelled(
     eps: f64,
     duration: f64,
+    fewest: usize,
     models: &Committed,
     pilots: &[Pilot],
     seconds: impl Fn(&Choice) -> f64,
@@ -300,7 +322,7 @@ fn cheapest_modelled(
         .filter_map(|pilot| {
             let method = pilot.method;
             let model = tighter_model(method, eps, models, pilots)?;
-            let choice = tolerance::by_model(method, &model, eps, LEVELS[0], duration);
+            let choice = tolerance::by_model(method, &model, eps, fewest, duration);
             if !fits(method, choice.segments, choice.dt) {
                 return None;
             }
@@ -392,6 +414,18 @@ pub fn choose(
         return Err(ConfigError::ToleranceEndless(eps));
     }
     let duration = duration.max(0.0);
+    if let Scene::Fold { gap } = *scene {
+        let snap = fold::snap_time(gap);
+        if duration > snap {
+            return Err(ConfigError::ToleranceFoldPastSnap {
+                tolerance: eps,
+                duration,
+                gap,
+                snap,
+                speed: fold::speed(fold::arm_runs_out(gap)),
+            });
+        }
+    }
     // The chosen run carries the live estimate (--tolerance needs it): its shadow counts.
     let cost_of = |method, segments, dt| {
         Cost::of_estimated_run(method, segments, dt, duration, COSTED_LOG_RATE, true)

@@ -73,18 +73,6 @@ pub fn plan_scene(request: &RunRequest, scene: Scene) -> Result<Planned, ConfigE
     };
     let (mut config, choice, pilots) = match request.tolerance {
         None => (asked, None, None),
-        Some(_) if matches!(scene, Scene::Fold { .. }) => {
-            return Err(ConfigError::ToleranceScene {
-                scene: scene.name(),
-                why: "and pilots coarse enough to be cheap cannot draw the fold's bend (two rods or more across the gap); choose --method midpoint and --segments at least 2 / gap instead (for example --segments 100 for --gap 0.02)",
-            });
-        }
-        Some(_) if matches!(scene, Scene::Shake { .. }) => {
-            return Err(ConfigError::ToleranceScene {
-                scene: scene.name(),
-                why: "and a shaken string's error grows with its resonance, which they do not know; choose --method midpoint and --segments (100 holds the steady state within 1 % below Ω = 2, docs/physics.md)",
-            });
-        }
         Some(eps) => {
             // `--tolerance EPS` for this scene, this run's duration and memory: never its
             // frames, so that where and how often it is drawn changes nothing it models.

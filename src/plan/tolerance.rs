@@ -53,6 +53,9 @@ pub fn choose_committed(
     committed: &Committed,
     fits: impl Fn(MethodKind, usize, f64) -> bool,
 ) -> Option<Choice> {
+    if !committed.measured_here {
+        return None;
+    }
     let covering = |m: MethodKind| committed.covers(m).then(|| committed.model(m));
     let any = |m: MethodKind| Some(committed.model(m));
     choose_with(tolerance, duration, scene, covering, MIN_SEGMENTS, &fits)
@@ -74,13 +77,17 @@ pub enum Source {
 pub struct Committed {
     models: Vec<(MethodKind, ErrorModel, Source)>,
     duration: f64,
+    /// Whether the committed models were measured on scenes of this kind (releases and
+    /// modes); for a fold or a shake they were not, and only the pilots measure.
+    pub measured_here: bool,
 }
 
 impl Committed {
     /// Each method's committed model from `scene` to `duration` for `tolerance`: the release
     /// atlas's ([`from_atlas`]) where it serves, else the method's one law, fitted to the
-    /// worst of six scenes.
+    /// worst of six scenes. None for a fold or a shake ([`Committed::measured_here`]).
     pub fn look_up(scene: &Scene, duration: f64, tolerance: f64) -> Self {
+        let measured_here = matches!(scene, Scene::Release { .. } | Scene::Mode { .. });
         let models = MethodKind::ALL
             .into_iter()
             .map(
@@ -90,7 +97,11 @@ impl Committed {
                 },
             )
             .collect();
-        Self { models, duration }
+        Self {
+            models,
+            duration,
+            measured_here,
+        }
     }
 
     /// Whether `method`'s committed model was measured over the run's whole duration: an
@@ -98,7 +109,7 @@ impl Committed {
     /// [`LAW_UNTIL`]. One that does not may not overrule a looser figure the pilots measured
     /// over the run's own time.
     pub fn covers(&self, method: MethodKind) -> bool {
-        self.source(method) == Source::Atlas || self.duration <= LAW_UNTIL
+        self.measured_here && (self.source(method) == Source::Atlas || self.duration <= LAW_UNTIL)
     }
 
     /// `method`'s committed model.
@@ -195,10 +206,15 @@ pub fn tightest(
 }
 
 /// The methods that can start from `scene` and that the rule may choose there for a run to
-/// `duration` ([`Descriptor::plannable`](crate::methods::Descriptor::plannable)).
+/// `duration` ([`Descriptor::plannable`](crate::methods::Descriptor::plannable)): for a scene
+/// with a method of its own (a fold, a shake: the one that keeps the energy, or its balance
+/// with the support's work, [`MethodKind::scene_default`]), that one alone.
 pub fn startable(scene: &Scene, duration: f64) -> impl Iterator<Item = MethodKind> + '_ {
+    let own = MethodKind::scene_default(scene.name()).map(|(method, _)| method);
     MethodKind::ALL.into_iter().filter(move |&method| {
-        (method.descriptor().plannable)(scene, duration) && can_start(method, scene)
+        own.is_none_or(|own| own == method)
+            && (method.descriptor().plannable)(scene, duration)
+            && can_start(method, scene)
     })
 }
 

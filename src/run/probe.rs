@@ -111,7 +111,7 @@ impl Probes {
                 let fold = self.fold.get_or_insert(FoldFall {
                     deepest_fall: 0.0,
                     deepest_fall_time: time,
-                    arm_limit: 1.0 - std::f64::consts::PI * gap / 2.0,
+                    arm_limit: crate::model::fold::arm_runs_out(gap),
                     start: y,
                 });
                 if y - fold.start > fold.deepest_fall {

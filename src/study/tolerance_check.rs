@@ -295,10 +295,15 @@ pub fn judging_step(dt: f64) -> f64 {
     whole_division(1.0 / JUDGE_RATE, dt)
 }
 
-/// The method the check's reference of `scene` to `duration` is made of: the graded rods
-/// where the rule may choose them (a release from 20° up: their tip converges faster through
-/// the whip, and their end rods do not spin on), else [`MethodKind::REFERENCE`].
+/// The method the check's reference of `scene` to `duration` is made of: a scene's own method
+/// where it has one (a fold's or a shake's, [`MethodKind::scene_default`]: the one the rule
+/// chooses there), else the graded rods where the rule may choose them (a release from 20°
+/// up: their tip converges faster through the whip, and their end rods do not spin on), else
+/// [`MethodKind::REFERENCE`].
 pub fn reference_method(scene: &Scene, duration: f64) -> MethodKind {
+    if let Some((method, _)) = MethodKind::scene_default(scene.name()) {
+        return method;
+    }
     match (MethodKind::Graded.descriptor().plannable)(scene, duration) {
         true => MethodKind::Graded,
         false => MethodKind::REFERENCE,

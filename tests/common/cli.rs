@@ -211,6 +211,27 @@ pub fn summary(path: &Path) -> Value {
     serde_json::from_str(&std::fs::read_to_string(path).expect("summary written")).expect("JSON")
 }
 
+/// Runs `rope` with `args`, saving its recording and summary in a scratch directory named
+/// for `name`, and returns the summary and what it said. Exit status 0, or 4 where a
+/// `--tolerance` run's live estimate passed EPS: the run ran either way, and the caller
+/// judges its choice.
+#[allow(dead_code)]
+pub fn run_judged(name: &str, args: &[&str]) -> (Value, String) {
+    let dir = Scratch::new(name);
+    let (rrd, json) = (dir.path("t.rrd"), dir.path("t.json"));
+    let mut args = args.to_vec();
+    args.extend_from_slice(&[
+        "--save",
+        rrd.to_str().unwrap(),
+        "--summary",
+        json.to_str().unwrap(),
+    ]);
+    let out = rope(&args);
+    let said = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(matches!(out.status.code(), Some(0 | 4)), "{said}");
+    (summary(&json), said)
+}
+
 /// Starts `rope` with `args`, stderr captured.
 pub fn start(args: &[&str]) -> Child {
     Command::new(ROPE)
