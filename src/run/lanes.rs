@@ -7,7 +7,7 @@
 
 use super::config::RunPlan;
 use super::pipeline::{self, BATCH_FRAMES, CHANNEL_FRAMES, Delivery, Simulation};
-use super::simulate::{Frame, Lane, Watch};
+use super::simulate::{Frame, Lane};
 use super::sink::FrameSink;
 use super::summary::Summary;
 use crate::error::{ConfigError, Diverged};
@@ -60,14 +60,7 @@ pub fn run<S: FrameSink>(
             .zip(senders)
             .map(|(((plan, method), shadow), tx)| {
                 scope.spawn(move || {
-                    let watch = shadow.as_mut().map(|shadow| Watch {
-                        shadow,
-                        tolerance: plan.tolerance,
-                    });
-                    let simulation = Simulation {
-                        method: method.as_mut(),
-                        watch,
-                    };
+                    let simulation = Simulation::of(plan, method.as_mut(), shadow.as_mut());
                     let send = |frame| tx.send(Message::Frame(Box::new(frame))).is_ok();
                     let lane =
                         pipeline::simulate_and_send(plan, simulation, send, stop, &|_| {}, started);

@@ -1,5 +1,6 @@
 //! Running a scene: what a run is asked to do ([`config`]), the pure driver that takes a
-//! method to its final time and makes frames ([`simulate`](mod@simulate)), when its numbers
+//! method to its final time and makes frames ([`simulate`](mod@simulate)), a frame and how it
+//! is built from the method's state ([`frame`](mod@frame)), when its numbers
 //! can no longer be trusted ([`trust`]), the live error estimate from a shadow at half the
 //! segments ([`estimate`]), the two-thread pipeline that hands the frames to a
 //! [`sink::FrameSink`] ([`pipeline`]), several methods side by side in lockstep ([`lanes`]),
@@ -8,6 +9,7 @@
 pub mod config;
 pub mod cost;
 pub mod estimate;
+pub mod frame;
 pub mod lanes;
 pub mod pipeline;
 pub mod probe;

@@ -2,16 +2,16 @@
 //! hands out frames at a fixed rate of simulated time. Pure: what happens to a frame is the
 //! caller's business (the logger streams it; studies and tests read it).
 
-use super::estimate::{ErrorEstimate, STRIDE, Shadow};
+use super::estimate::{STRIDE, Shadow};
+pub use super::frame::{EnergyBase, Exceeded, Frame, Lane, frame};
 pub use super::trust::{ENERGY_BLOWUP, REFERENCE_STEP, TENSION_BLOWUP, reference_energy};
 use crate::error::Diverged;
 use crate::methods::{
     Method, MethodKind, Observation, StepStatistics, stability_hint, whole_division,
 };
 use crate::model::Scene;
-use crate::model::geometry::{self, Energy, Point};
-use crate::model::support::{self, SupportNow, tip_in_the_room};
-use nalgebra::Vector2;
+use crate::model::geometry::Point;
+use crate::model::support::tip_in_the_room;
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -60,104 +60,11 @@ pub struct EstimateOutcome {
     pub lost: Option<Diverged>,
 }
 
-/// One logged instant: the rope's shape and everything the viewer and the summary show.
-#[derive(Clone, Debug)]
-pub struct Frame {
-    pub step: u64,
-    pub time: f64,
-    /// Node positions in the room, support … tip (N + 1 points, eqs. 14–15, from the
-    /// support where it is now).
-    pub nodes: Vec<Point>,
-    /// Where each node sits along the string (s = 0 at the support, 1 at the tip) for rods of
-    /// unequal lengths ([`Method::lengths`]); `None` for equal segments, node i at i/N.
-    pub edges: Option<Vec<f64>>,
-    /// Tension on each segment, the first at [`Frame::tension_first_at`] segments from the
-    /// support, the others a segment apart.
-    pub tension: Vec<f64>,
-    /// Where the first tension sits, in segments from the support
-    /// ([`crate::methods::Descriptor::tension_first_at`]).
-    pub tension_first_at: f64,
-    /// In the room: under a shaken support, the kinetic energy of its motion included.
-    pub energy: Energy,
-    /// (E − W − E_ref) / scale, E_ref the same after [`REFERENCE_STEP`] steps, W the work the
-    /// support has done (none unless it moves).
-    pub energy_deviation: f64,
-    /// A moving support: where it is, how it moves, and the work it has done since the
-    /// start; `None` for a fixed one.
-    pub support: Option<SupportNow>,
-    /// E − E₀ − W, E₀ the energy at the start: what the energy gained beyond the support's
-    /// work (zero for the ideal string); `None` under a fixed support, where it is E − E₀.
-    pub balance: Option<f64>,
-    pub tip_velocity: Vector2<f64>,
-    pub tip_acceleration: Vector2<f64>,
-    /// The string's momentum (mass 1, [`geometry::momentum`]): what the support's force
-    /// changes, beside gravity.
-    pub momentum: Vector2<f64>,
-    /// The tension at the support, s = 0 ([`Method::support_tension`]): the first of
-    /// `tension` sits below it.
-    pub support_tension: f64,
-    /// The largest joint gap, for a method that solves for its joints (see
-    /// [`Method::constraint_residual`]).
-    pub constraint_residual: Option<f64>,
-    /// |G v| before the latest velocity projection, for a method whose velocities can leave
-    /// the constraints between projections (see [`Method::velocity_residual`]).
-    pub velocity_residual: Option<f64>,
-    /// Richardson's estimate of this frame's error, for a run with a shadow at an instant the
-    /// shadow shares.
-    pub error_estimate: Option<ErrorEstimate>,
-    /// On the first frame at or after the instant the tip estimate first passed the
-    /// tolerance (watched at every step the run shares with its shadow, frames or none): that
-    /// instant and the estimate there.
-    pub tolerance_exceeded: Option<Exceeded>,
-    /// In a run of several methods side by side: which one this frame is of, and how far its
-    /// string is from the most accurate one's. `None` in a run of one method.
-    pub lane: Option<Lane>,
-    /// What the scene's theory predicts of this frame's motion, beside the measurement
-    /// ([`Scene::theory`]); empty for a scene without one.
-    pub theory: Vec<crate::model::theory::Comparison>,
-}
-
-/// The instant a run's tip estimate first passed its tolerance.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Exceeded {
-    pub step: u64,
-    pub time: f64,
-    /// The tip's first-order bound there, which passed the tolerance.
-    pub estimate: f64,
-}
-
-/// A frame's place in a run of several methods side by side.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Lane {
-    /// Where the method stands in the run's list (the plans of `FrameSink::begin_lanes`).
-    pub index: usize,
-    pub method: crate::methods::MethodKind,
-    /// The largest distance, at equal arc length, between this string and that of the most
-    /// accurate method still running (`MethodKind::BY_ACCURACY`); `None` for that one.
-    pub disagreement: Option<f64>,
-}
-
 /// The largest time step at most `dt` that puts frames `1 / log_rate` apart on whole
 /// numbers of [`STRIDE`] steps: methods at such steps share every frame time exactly (and
 /// each its shadow's), so that their strings can be compared frame by frame.
 pub fn step_on_frame_grid(dt: f64, log_rate: f64) -> f64 {
     whole_division(1.0 / (log_rate * STRIDE as f64), dt)
-}
-
-impl Frame {
-    /// The free end.
-    pub fn tip(&self) -> Point {
-        self.nodes.last().copied().unwrap_or_else(Point::origin)
-    }
-
-    /// Where `tension[i]` sits along the string, s = 0 at the support and 1 at the tip,
-    /// [`Frame::tension_first_at`] of its own segment along (graded rods: of its own rod).
-    pub fn tension_s(&self, i: usize) -> f64 {
-        match &self.edges {
-            None => (i as f64 + self.tension_first_at) / self.tension.len() as f64,
-            Some(e) => e[i] + self.tension_first_at * (e[i + 1] - e[i]),
-        }
-    }
 }
 
 /// How a run ended and what it measured.
@@ -217,79 +124,6 @@ fn frame_step(j: u64, options: &Options, dt: f64, stride: u64) -> u64 {
         None => time,
     };
     stride * (time / (dt * stride as f64)).round() as u64
-}
-
-/// The energies a frame's deviation and balance are measured from: E − W after
-/// [`REFERENCE_STEP`] steps and at the start, and what deviations are divided by.
-#[derive(Clone, Copy, Debug)]
-pub struct EnergyBase {
-    pub reference: f64,
-    pub start: f64,
-    pub scale: f64,
-}
-
-impl EnergyBase {
-    /// The base of a run of `method` from its start.
-    pub fn of(method: &dyn Method) -> Self {
-        let reference = reference_energy(method);
-        Self {
-            reference,
-            start: method.energy_less_work(),
-            scale: if reference.abs() >= 0.01 {
-                reference.abs()
-            } else {
-                1.0
-            },
-        }
-    }
-}
-
-/// Builds a frame from the method's current state.
-pub fn frame(method: &mut dyn Method, obs: &mut Observation, base: EnergyBase) -> Frame {
-    method.observe(obs);
-    let support = method.support();
-    let lengths = method.lengths();
-    let mut nodes = Vec::with_capacity(obs.angle.len() + 1);
-    geometry::nodes_of(&obs.angle, lengths, &mut nodes);
-    let edges = lengths.map(|l| {
-        let mut edges = Vec::with_capacity(l.len() + 1);
-        geometry::edges(l.len(), Some(l), &mut edges);
-        edges
-    });
-    support::into_the_room(support, &mut nodes);
-    let moving = Vector2::new(support.map_or(0.0, |s| s.velocity), 0.0);
-    let energy = method.energy();
-    let first_at = method.descriptor().tension_first_at;
-    // E − W from the energy and the support already in hand ([`Method::energy_less_work`]).
-    let kept = energy.total() - support.map_or(0.0, |s| s.work);
-    Frame {
-        step: method.steps(),
-        time: method.time(),
-        nodes,
-        edges,
-        tension: obs.tension.clone(),
-        tension_first_at: first_at,
-        energy,
-        energy_deviation: (kept - base.reference) / base.scale,
-        balance: support.map(|_| kept - base.start),
-        support,
-        tip_velocity: geometry::tip_velocity_of(&obs.angle, &obs.angular_velocity, lengths)
-            + moving,
-        momentum: geometry::momentum_of(&obs.angle, &obs.angular_velocity, lengths) + moving,
-        tip_acceleration: geometry::tip_acceleration_of(
-            &obs.angle,
-            &obs.angular_velocity,
-            &obs.angular_acceleration,
-            lengths,
-        ) + Vector2::new(support.map_or(0.0, |s| s.acceleration), 0.0),
-        support_tension: method.support_tension(),
-        constraint_residual: method.constraint_residual(),
-        velocity_residual: method.velocity_residual(),
-        error_estimate: None,
-        tolerance_exceeded: None,
-        lane: None,
-        theory: Vec::new(),
-    }
 }
 
 /// Runs `method` to `options.duration`. Calls `on_frame` at every frame time; a `Break` from
@@ -375,7 +209,9 @@ pub fn run_shadowed(
 /// As [`run`], with the live error estimate of `watch` (if any) in every frame the shadow
 /// shares, and the tolerance watched; `on_step` is shown the method at the start and after
 /// every step (before that step's frame, if it has one): what a figure that must not depend
-/// on the frames reads.
+/// on the frames reads. The energy's reference is the run's own after [`REFERENCE_STEP`]
+/// steps: the frames before it wait there for their deviation (a copy stepped ahead would
+/// repeat those steps, half a small run's), unless the run is shorter.
 pub fn run_watched(
     method: &mut dyn Method,
     mut estimating: Option<Watch<'_>>,
@@ -391,15 +227,19 @@ pub fn run_watched(
     let shared = estimating.is_some() && options.log_rate * dt * STRIDE as f64 <= 1.0;
     let stride = if shared { STRIDE } else { 1 };
     let total_steps = (options.duration / dt).round() as u64;
-    let base = EnergyBase::of(method);
-    let (energy_reference, energy_scale) = (base.reference, base.scale);
+    let waits = total_steps >= REFERENCE_STEP && method.steps() == 0;
+    let mut base = match waits {
+        true => EnergyBase::at_start(method),
+        false => EnergyBase::of(method),
+    };
+    let mut waiting = Vec::new();
     // Check the energy on the fine grid: cheap against the steps between.
     let check_every = super::trust::steps_between(dt);
     let mut outcome = Outcome {
         steps: 0,
         time: 0.0,
-        energy_reference,
-        energy_scale,
+        energy_reference: base.reference,
+        energy_scale: base.scale,
         energy_final: method.energy_less_work(),
         max_abs_deviation: 0.0,
         frames: 0,
@@ -442,7 +282,9 @@ pub fn run_watched(
             while frame_step(next_frame, options, dt, stride) <= step {
                 next_frame += 1;
             }
-            if on_frame(f).is_break() {
+            if waits && step < REFERENCE_STEP {
+                waiting.push(f);
+            } else if on_frame(f).is_break() {
                 outcome.cancelled = true;
                 break;
             }
@@ -455,8 +297,16 @@ pub fn run_watched(
             break;
         }
         let step = method.steps();
+        if waits && step == REFERENCE_STEP {
+            base = EnergyBase::measured(base.start, method.energy_less_work());
+            (outcome.energy_reference, outcome.energy_scale) = (base.reference, base.scale);
+            if deliver(&mut waiting, base, &mut on_frame).is_break() {
+                outcome.cancelled = true;
+                break;
+            }
+        }
         if step.is_multiple_of(check_every) || step == total_steps || step == REFERENCE_STEP {
-            if let Some(d) = watch(method, energy_reference, &mut outcome) {
+            if let Some(d) = watch(method, base.reference, &mut outcome) {
                 outcome.diverged = Some(d);
                 break;
             }
@@ -467,6 +317,10 @@ pub fn run_watched(
                 break;
             }
         }
+    }
+    // Ended before the reference step (diverged or stopped): measured from the start.
+    if deliver(&mut waiting, base, &mut on_frame).is_break() {
+        outcome.cancelled = true;
     }
     outcome.steps = method.steps();
     outcome.time = method.time();
@@ -481,6 +335,20 @@ pub fn run_watched(
         outcome.tip = tip_in_the_room(trusted_support, &trusted_angles, method.lengths());
     }
     outcome
+}
+
+/// Hands the frames that waited for the energy's reference to `on_frame`, their deviation
+/// now measured from `base`.
+fn deliver(
+    waiting: &mut Vec<Frame>,
+    base: EnergyBase,
+    on_frame: &mut impl FnMut(Frame) -> ControlFlow<()>,
+) -> ControlFlow<()> {
+    for mut f in waiting.drain(..) {
+        f.energy_deviation = base.deviation(&f.energy, f.support);
+        on_frame(f)?;
+    }
+    ControlFlow::Continue(())
 }
 
 /// At a step the run shares with its shadow, the tip's live estimate, what it says put into
@@ -597,4 +465,50 @@ fn watch(method: &dyn Method, energy_reference: f64, outcome: &mut Outcome) -> O
     }
     outcome.trusted = (step, method.time());
     None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::methods::MethodKind;
+
+    /// Every frame of the seed scheme from 30° at N = 20 (a frame at every step), its energy
+    /// measured from the run's own tenth step.
+    fn deviations(duration: f64) -> Vec<(u64, f64)> {
+        let mut method = MethodKind::Seed
+            .build(&Scene::Release { angle_deg: 30.0 }, 20, 1e-3)
+            .expect("valid");
+        let options = Options {
+            duration,
+            log_rate: 1000.0,
+            frame_grid: None,
+        };
+        let mut seen = Vec::new();
+        run(method.as_mut(), &options, None, |f| {
+            seen.push((f.step, f.energy_deviation));
+            ControlFlow::Continue(())
+        });
+        seen
+    }
+
+    #[test]
+    fn frames_before_the_reference_step_wait_for_it_and_read_as_a_copy_stepped_ahead_would() {
+        // The seed scheme's start-up burst makes E at step 10 differ from E at the start.
+        let seen = deviations(0.05);
+        assert_eq!(seen.len(), 51, "a frame at every step, in order");
+        assert!(seen.iter().zip(0..).all(|(&(step, _), i)| step == i));
+        assert_eq!(seen[REFERENCE_STEP as usize].1, 0.0);
+        // A copy stepped ten steps ahead, as a run shorter than that measures it.
+        let method = MethodKind::Seed
+            .build(&Scene::Release { angle_deg: 30.0 }, 20, 1e-3)
+            .expect("valid");
+        let ahead = EnergyBase::of(method.as_ref());
+        let start = (ahead.start - ahead.reference) / ahead.scale;
+        assert!(start != 0.0);
+        assert_eq!(seen[0].1, start);
+        // A run of fewer steps than the reference's looks ahead and reads the same.
+        let short = deviations(0.005);
+        assert_eq!(short.len(), 6);
+        assert_eq!(short[0].1, start);
+    }
 }

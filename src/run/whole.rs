@@ -6,7 +6,6 @@ use super::pipeline;
 use super::simulate::Frame;
 use super::summary::Summary;
 use crate::error::ConfigError;
-use std::sync::atomic::AtomicBool;
 
 /// What [`simulate`] returns: every frame of the run and what the run measured.
 #[derive(Clone, Debug)]
@@ -45,12 +44,6 @@ pub struct Simulated {
 /// # Ok::<(), rope::ConfigError>(())
 /// ```
 pub fn simulate(config: &RunConfig) -> Result<Simulated, ConfigError> {
-    let plan = config.validate()?;
-    let (mut frames, taken) = crossbeam_channel::unbounded();
-    let summary = pipeline::run(&plan, &mut frames, &AtomicBool::new(false), &|_| {})?;
-    drop(frames);
-    Ok(Simulated {
-        frames: taken.iter().collect(),
-        summary,
-    })
+    let (frames, summary) = pipeline::run_in_memory(&config.validate()?)?;
+    Ok(Simulated { frames, summary })
 }

@@ -40,6 +40,15 @@ pub trait ConvergedTip {
         false
     }
 
+    /// The tip's largest distance from this reference over a run's `frames` after t = 0.
+    fn farthest(&self, frames: &[crate::run::Frame]) -> f64 {
+        frames
+            .iter()
+            .filter(|f| f.time > 0.0)
+            .map(|f| (f.tip() - self.tip_at(f.time)).norm())
+            .fold(0.0, f64::max)
+    }
+
     /// The largest own error at `rate` instants a time unit to `duration`: at the frames
     /// ([`LOG_RATE`]) what judges a run's frames; finer, it also sees between them (a whip's
     /// peak is brief).
