@@ -61,6 +61,14 @@ pub enum ConfigError {
         segments: usize,
         cost: String,
     },
+    #[error(
+        "gap = {gap:e}: --tolerance flies the fold's pilots from sixteen rods across the gap, N = 16 / gap = {segments:.2e}, which does not fit in {limit}; widen --gap (0.02 to 0.05 are served in seconds), or leave out --tolerance and choose --segments (at least 2 / gap)"
+    )]
+    ToleranceFoldPilots {
+        gap: f64,
+        segments: f64,
+        limit: String,
+    },
     #[error("tolerance = {0:e}: no method can start from this scene")]
     ToleranceNoMethod(f64),
     #[error(

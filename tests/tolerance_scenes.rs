@@ -104,24 +104,34 @@ fn the_fold_is_served_to_its_snap_and_holds_against_a_converged_reference() {
     assert!(worst <= eps, "worst {worst:.2e} at N = {}", s["segments"]);
 }
 
+/// What `rope run FLAGS --save /dev/null` said, refused as bad input (exit 2).
+fn refused(flags: &str) -> String {
+    let mut args = vec!["run", "--save", "/dev/null"];
+    args.extend(flags.split_whitespace());
+    let out = rope(&args);
+    let said = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(out.status.code(), Some(2), "{said}");
+    said
+}
+
 #[test]
 fn the_fold_past_its_snap_is_refused_naming_the_duration_that_would_work() {
     // The default gap, 0.04: its arm runs out at t = 1.1876.
-    let out = rope(&[
-        "run",
-        "--scene",
-        "fold",
-        "--tolerance",
-        "1e-3",
-        "--save",
-        "/dev/null",
-    ]);
-    let said = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{said}");
+    let said = refused("--scene fold --tolerance 1e-3");
     assert!(
         said.contains("duration = 3")
             && said.contains("t = 1.1876")
             && said.contains("--duration 1.18"),
+        "{said}"
+    );
+}
+
+#[test]
+fn a_fold_too_narrow_for_its_pilots_is_refused_before_one_flies() {
+    // Sixteen rods across a gap of 1e-9 are 1.6e10 rods: refused at once, naming the gap.
+    let said = refused("--scene fold --gap 1e-9 --duration 0.01 --tolerance 1e-3");
+    assert!(
+        said.contains("gap = 1e-9") && said.contains("1.60e10") && said.contains("--gap"),
         "{said}"
     );
 }

@@ -35,7 +35,10 @@ pub const LEVELS: [usize; 3] = [16, 32, 64];
 pub fn levels(scene: &Scene) -> [usize; 3] {
     match *scene {
         Scene::Fold { gap } => {
-            let first = ((16.0 / gap).ceil() as usize).max(LEVELS[0]);
+            // (At most 2^40: a narrower gap asks more than any machine holds, and is refused
+            // as such before a pilot flies.)
+            let first = (16.0 / gap).ceil().min(2f64.powi(40)) as usize;
+            let first = first.max(LEVELS[0]);
             [first, 2 * first, 4 * first]
         }
         _ => LEVELS,
@@ -434,6 +437,23 @@ pub fn choose(
         let cost = cost_of(method, segments, dt);
         cost.bytes <= memory && cost.seconds <= tolerance::MAX_SECONDS
     };
+    // A fold's pilots fly from N = 16 / gap: a gap so narrow that the first cannot fit is
+    // refused before one flies.
+    if let Scene::Fold { gap } = *scene {
+        let first = levels(scene)[0];
+        let flies = |m: MethodKind| fits(m, first, m.tolerance_dt(first));
+        if !tolerance::startable(scene, duration).any(flies) {
+            return Err(ConfigError::ToleranceFoldPilots {
+                gap,
+                segments: 16.0 / gap,
+                limit: format!(
+                    "{} of CPU and {} of memory",
+                    cost::seconds_text(tolerance::MAX_SECONDS),
+                    cost::bytes_text(memory)
+                ),
+            });
+        }
+    }
     // The committed models, looked up once: the choice and the pilots' climb read them.
     let models = Committed::look_up(scene, duration, eps);
     let committed = tolerance::choose_committed(eps, duration, scene, &models, fits);
