@@ -12,8 +12,7 @@
 //! `assets/release-atlas/atlas.csv`, read here at build time). Each worst error is the largest
 //! at every 1/3 000 of a time unit, whatever the frames (`tolerance_check::measure`): a whip's
 //! error peak is narrower than a frame, and at 60 frames a unit the atlas read up to seven
-//! times less than the truth. The graded rods' atlas to t = 5 is still as measured at 60 frames
-//! a unit.
+//! times less than the truth. So is the graded rods' atlas to t = 5.
 //!
 //! At an angle the atlas measured (one of its own, or a held-out one), a tolerance may be met by an
 //! N it measured there: the fewest whose bound (the measured error plus its reference's own) holds
