@@ -23,6 +23,9 @@ use std::time::Instant;
 /// The pilots' segment counts: three levels, so that the order is observed, not assumed.
 pub const LEVELS: [usize; 3] = [16, 32, 64];
 
+/// Rods across a fold's gap at its first pilot ([`levels`]).
+pub const FOLD_RODS_ACROSS_GAP: f64 = 16.0;
+
 /// The pilots' segment counts for `scene`: [`LEVELS`], but for a fold, whose bend must be
 /// drawn before its error shrinks at an order the pilots can read: from sixteen rods across
 /// the gap (eight in the shadow at N/2), N₀ = ⌈16 / gap⌉, then 2N₀ and 4N₀ (800, 1 600 and
@@ -37,7 +40,7 @@ pub fn levels(scene: &Scene) -> [usize; 3] {
         Scene::Fold { gap } => {
             // (At most 2^40: a narrower gap asks more than any machine holds, and is refused
             // as such before a pilot flies.)
-            let first = (16.0 / gap).ceil().min(2f64.powi(40)) as usize;
+            let first = (FOLD_RODS_ACROSS_GAP / gap).ceil().min(2f64.powi(40)) as usize;
             let first = first.max(LEVELS[0]);
             [first, 2 * first, 4 * first]
         }
@@ -417,6 +420,23 @@ pub fn choose(
         return Err(ConfigError::ToleranceEndless(eps));
     }
     let duration = duration.max(0.0);
+    // The chosen run carries the live estimate (--tolerance needs it): its shadow counts.
+    let cost_of = |method, segments, dt| {
+        Cost::of_estimated_run(method, segments, dt, duration, COSTED_LOG_RATE, true)
+    };
+    let fits = |method, segments, dt| {
+        let cost = cost_of(method, segments, dt);
+        cost.bytes <= memory && cost.seconds <= tolerance::MAX_SECONDS
+    };
+    let limit = || {
+        format!(
+            "{} of CPU and {} of memory",
+            cost::seconds_text(tolerance::MAX_SECONDS),
+            cost::bytes_text(memory)
+        )
+    };
+    // A fold is served to its snap, by pilots from N = 16 / gap: past the snap, or with a gap
+    // so narrow that the first pilot cannot fit, it is refused before one flies.
     if let Scene::Fold { gap } = *scene {
         let snap = fold::snap_time(gap);
         if duration > snap {
@@ -428,29 +448,13 @@ pub fn choose(
                 speed: fold::speed(fold::arm_runs_out(gap)),
             });
         }
-    }
-    // The chosen run carries the live estimate (--tolerance needs it): its shadow counts.
-    let cost_of = |method, segments, dt| {
-        Cost::of_estimated_run(method, segments, dt, duration, COSTED_LOG_RATE, true)
-    };
-    let fits = |method, segments, dt| {
-        let cost = cost_of(method, segments, dt);
-        cost.bytes <= memory && cost.seconds <= tolerance::MAX_SECONDS
-    };
-    // A fold's pilots fly from N = 16 / gap: a gap so narrow that the first cannot fit is
-    // refused before one flies.
-    if let Scene::Fold { gap } = *scene {
         let first = levels(scene)[0];
         let flies = |m: MethodKind| fits(m, first, m.tolerance_dt(first));
         if !tolerance::startable(scene, duration).any(flies) {
             return Err(ConfigError::ToleranceFoldPilots {
                 gap,
-                segments: 16.0 / gap,
-                limit: format!(
-                    "{} of CPU and {} of memory",
-                    cost::seconds_text(tolerance::MAX_SECONDS),
-                    cost::bytes_text(memory)
-                ),
+                segments: FOLD_RODS_ACROSS_GAP / gap,
+                limit: limit(),
             });
         }
     }
@@ -472,11 +476,7 @@ pub fn choose(
     let cost = cost_of(best.method, best.segments, best.dt);
     Err(ConfigError::ToleranceUnreachable {
         tolerance: eps,
-        limit: format!(
-            "{} of CPU and {} of memory",
-            cost::seconds_text(tolerance::MAX_SECONDS),
-            cost::bytes_text(memory)
-        ),
+        limit: limit(),
         tightest: best.predicted_error,
         method: best.method.name(),
         segments: best.segments,
