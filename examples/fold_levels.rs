@@ -10,24 +10,18 @@
 //! (`-- 0.02 1.2`) it shows what `--tolerance` does not serve.
 //! Each reference is the midpoint method at N = 1 600, 3 200 and 6 400, extrapolated in N.
 
+#[path = "common/args.rs"]
+mod args;
+
 use rope::methods::MethodKind;
 use rope::model::{Scene, fold};
 use rope::study::tip_reference::{ConvergedTip, TipReference};
 use rope::study::tolerance_check::measure;
 
 fn main() -> anyhow::Result<()> {
-    let mut args = std::env::args().skip(1);
-    let gaps: Vec<f64> = match args.next() {
-        Some(text) => text
-            .split(',')
-            .map(|v| v.trim().parse().map_err(|e| anyhow::anyhow!("{v:?}: {e}")))
-            .collect::<anyhow::Result<_>>()?,
-        None => vec![0.02, 0.04],
-    };
-    let duration: f64 = match args.next() {
-        Some(text) => text.parse().map_err(|e| anyhow::anyhow!("{text:?}: {e}"))?,
-        None => 1.18,
-    };
+    let mut argv = std::env::args().skip(1);
+    let gaps = args::numbers(argv.next(), &[0.02, 0.04])?;
+    let duration = args::number(argv.next(), 1.18)?;
     let method = MethodKind::Midpoint;
     println!(
         "| gap | snap at t | N | rods across the gap | worst tip error to t = {duration} | error ratio to the N below | live estimate's first-order bound | bound / error |\n|---|---|---|---|---|---|---|---|"

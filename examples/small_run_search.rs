@@ -7,6 +7,9 @@
 //! `cargo run --release --example small_run_search -- [EPS,EPS…]` (by default 1e-3 and 1e-4;
 //! about a minute). `cargo bench --bench small_run` keeps the two runs the issue named.
 
+#[path = "common/args.rs"]
+mod args;
+
 use rope::methods::MethodKind;
 use rope::model::Scene;
 use rope::study::tip_reference::{ConvergedTip, TipReference};
@@ -34,13 +37,7 @@ fn measure(config: &RunConfig, reference: &TipReference, repeats: usize) -> Opti
 }
 
 fn main() -> anyhow::Result<()> {
-    let tolerances: Vec<f64> = match std::env::args().nth(1) {
-        Some(text) => text
-            .split(',')
-            .map(|v| v.trim().parse().map_err(|e| anyhow::anyhow!("{v:?}: {e}")))
-            .collect::<anyhow::Result<_>>()?,
-        None => vec![1e-3, 1e-4],
-    };
+    let tolerances = args::numbers(std::env::args().nth(1), &[1e-3, 1e-4])?;
     let reference = TipReference::compute(&SCENE, 400, 1.0)?;
     eprintln!(
         "reference: the chain at N = 200, 400, 800, order {:.2}, own error {:.1e}",

@@ -20,6 +20,9 @@
 //! up to N = 6400: minutes a scene; a shake's from N = 128, towards a tenth of the smallest
 //! EPS, two doublings at most). Prints the two tables in Markdown.
 
+#[path = "common/args.rs"]
+mod args;
+
 use rope::model::{Scene, ShakeStart};
 use rope::plan::pilot;
 use rope::study::read_reference::{CheckReference, read_all};
@@ -37,16 +40,6 @@ const DURATION_READ: f64 = 3.0;
 
 /// How many times finer the step of the run the chosen one is held against in the second table.
 const FINER: usize = 6;
-
-fn list(arg: Option<String>, default: &[f64]) -> anyhow::Result<Vec<f64>> {
-    match arg {
-        None => Ok(default.to_vec()),
-        Some(text) => text
-            .split(',')
-            .map(|v| v.trim().parse().map_err(|e| anyhow::anyhow!("{v:?}: {e}")))
-            .collect(),
-    }
-}
 
 /// A scene as the command line names it here: a release angle in degrees (`40`), a fold by its
 /// gap (`fold=0.02`), or a shake from its steady state by its frequency and amplitude
@@ -77,18 +70,15 @@ fn scene(text: &str) -> anyhow::Result<Scene> {
 }
 
 fn main() -> anyhow::Result<()> {
-    let mut args = std::env::args().skip(1);
-    let tolerances = list(args.next(), &[1e-3, 1e-4])?;
-    let scenes: Vec<Scene> = match args.next() {
+    let mut argv = std::env::args().skip(1);
+    let tolerances = args::numbers(argv.next(), &[1e-3, 1e-4])?;
+    let scenes: Vec<Scene> = match argv.next() {
         None => [20.0, 30.0, 40.0, 50.0, 60.0, 70.0, 80.0]
             .map(|angle_deg| Scene::Release { angle_deg })
             .to_vec(),
         Some(text) => text.split(',').map(scene).collect::<anyhow::Result<_>>()?,
     };
-    let duration = match args.next() {
-        Some(text) => text.parse().map_err(|e| anyhow::anyhow!("{text:?}: {e}"))?,
-        None => 3.0,
-    };
+    let duration = args::number(argv.next(), 3.0)?;
     let smallest = tolerances.iter().copied().fold(f64::INFINITY, f64::min);
     let releases = scenes.iter().all(|s| matches!(s, Scene::Release { .. }));
     let references: Vec<CheckReference> = if releases && duration <= DURATION_READ {

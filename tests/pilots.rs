@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::cli::run_judged;
+use common::cli::{run_judged, tip_samples};
 use rope::methods::MethodKind;
 use rope::model::{Point, Scene};
 use rope::plan::tolerance;
@@ -11,19 +11,10 @@ use rope::plan::{atlas, pilot};
 use rope::study::tip_reference::TipReference;
 
 /// The largest distance, over a run's summary's tip samples, from the reference's tip.
-fn worst_tip_error(samples: &serde_json::Value, reference: impl Fn(f64) -> Point) -> f64 {
-    samples
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|s| {
-            let (t, x, y) = (
-                s[0].as_f64().unwrap(),
-                s[1].as_f64().unwrap(),
-                s[2].as_f64().unwrap(),
-            );
-            (Point::new(x, y) - reference(t)).norm()
-        })
+fn worst_tip_error(summary: &serde_json::Value, reference: impl Fn(f64) -> Point) -> f64 {
+    tip_samples(summary)
+        .into_iter()
+        .map(|(t, tip)| (tip - reference(t)).norm())
         .fold(0.0, f64::max)
 }
 
@@ -54,7 +45,7 @@ fn a_mode_is_modelled_with_what_it_needs_and_holds_the_tolerance() {
         amplitude: 0.05,
     };
     let reference = TipReference::compute(&mode, 200, 3.0).unwrap();
-    let worst = worst_tip_error(&s["tip_samples"], |t| reference.at(t));
+    let worst = worst_tip_error(&s, |t| reference.at(t));
     eprintln!(
         "mode 1, 1e-4: {} at N = {segments}, worst tip error {worst:.2e}",
         s["method"]
@@ -85,7 +76,7 @@ fn thirty_degree_reference(segments: usize) -> TipReference {
 fn thirty_degrees_holds(eps: &str, reference: &TipReference) {
     let flags = ["--angle", "30", "--tolerance", eps];
     let (s, _) = tolerance_run(&format!("pilot-30-{eps}"), &flags);
-    let worst = worst_tip_error(&s["tip_samples"], |t| reference.at(t));
+    let worst = worst_tip_error(&s, |t| reference.at(t));
     let (method, segments) = (&s["method"], &s["segments"]);
     eprintln!("30°, {eps}: {method} at N = {segments}, worst tip error {worst:.2e}");
     let eps: f64 = eps.parse().unwrap();
@@ -330,7 +321,7 @@ fn a_scene_its_pilots_show_cheaper_is_run_from_their_model_and_holds() {
     ];
     let (s, _) = tolerance_run("pilot-mode-2", &flags);
     assert_eq!(s["segments"].as_u64(), Some(choice.segments as u64));
-    let worst = worst_tip_error(&s["tip_samples"], |t| reference.at(t)) + reference.own_error;
+    let worst = worst_tip_error(&s, |t| reference.at(t)) + reference.own_error;
     eprintln!(
         "mode 2, 1e-3: N = {}, worst tip error at most {worst:.2e}",
         choice.segments
@@ -559,7 +550,7 @@ fn over_5_units_holds_1e_3(angle_deg: f64) {
     let angle = angle_deg.to_string();
     let flags = ["--angle", &angle, "--tolerance", "1e-3", "--duration", "5"];
     let (s, _) = tolerance_run(&format!("pilot-{angle}-5"), &flags);
-    let worst = worst_tip_error(&s["tip_samples"], |t| reference.at(t));
+    let worst = worst_tip_error(&s, |t| reference.at(t));
     let (method, segments) = (&s["method"], &s["segments"]);
     // Against the truth: the error against the reference plus the reference's own.
     let bound = worst + reference.own_error;

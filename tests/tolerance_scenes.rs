@@ -4,9 +4,9 @@
 
 mod common;
 
-use common::cli::{rope, run_judged};
+use common::cli::{rope, run_judged, tip_samples};
 use rope::methods::MethodKind;
-use rope::model::{Point, Scene, ShakeStart, fold};
+use rope::model::{Scene, ShakeStart, fold};
 use rope::study::tip_reference::TipReference;
 
 /// Runs `rope run` with `flags` (one string, split at spaces), a frame at every step
@@ -25,19 +25,6 @@ fn served_by_midpoints_pilots(name: &str, flags: &str) -> serde_json::Value {
     assert!(said.contains("tolerance pilots"), "{said}");
     assert_eq!(s["method"], "midpoint", "{said}");
     s
-}
-
-/// `[t, x, y]` of the tip at every frame of a summary.
-fn tip_samples(s: &serde_json::Value) -> Vec<(f64, Point)> {
-    s["tip_samples"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|v| {
-            let at = |i: usize| v[i].as_f64().unwrap();
-            (at(0), Point::new(at(1), at(2)))
-        })
-        .collect()
 }
 
 #[test]

@@ -232,6 +232,20 @@ pub fn run_judged(name: &str, args: &[&str]) -> (Value, String) {
     (summary(&json), said)
 }
 
+/// `(t, tip)` at every frame of a run's summary (its `tip_samples`).
+#[allow(dead_code)]
+pub fn tip_samples(summary: &Value) -> Vec<(f64, rope::model::Point)> {
+    summary["tip_samples"]
+        .as_array()
+        .expect("tip_samples")
+        .iter()
+        .map(|v| {
+            let at = |i: usize| v[i].as_f64().expect("a number");
+            (at(0), rope::model::Point::new(at(1), at(2)))
+        })
+        .collect()
+}
+
 /// Starts `rope` with `args`, stderr captured.
 pub fn start(args: &[&str]) -> Child {
     Command::new(ROPE)
