@@ -333,6 +333,44 @@ fn a_scene_its_pilots_show_cheaper_is_run_from_their_model_and_holds() {
     );
 }
 
+/// Within the committed window a release's pilots may not ask fewer rods than the committed
+/// model that covers the run: a release's error constant goes on growing past their N ≤ 64.
+/// From 80° at 1e-4 the chain's pilots fit about 0.14/N (×1.9 for scatter and safety) and once
+/// asked N = 2 639, which erred by 1.15e-4 at every instant against the committed reference
+/// (0.30/N; `cargo run --release --example tolerance_instants -- 1e-4 80`); the chain's law,
+/// measured up to large N, asks more, and its run held at 0.66 of EPS.
+#[test]
+fn within_the_committed_window_a_releases_pilots_never_ask_fewer_rods_than_the_committed_model() {
+    let scene = Scene::Release { angle_deg: 80.0 };
+    let (choice, pilots) = pilot::choose(1e-4, &scene, 3.0, u64::MAX).unwrap();
+    let models = tolerance::Committed::look_up(&scene, 3.0, 1e-4);
+    assert!(models.floors_pilots && models.covers(choice.method));
+    let own = pilots
+        .flown
+        .iter()
+        .find(|p| p.method == choice.method)
+        .and_then(|p| p.model)
+        .expect("the chosen method's pilots have a model");
+    let committed = models.model(choice.method);
+    assert!(
+        own.segments_for(1e-4) < committed.segments_for(1e-4),
+        "the pilots' own model no longer asks fewer: the test tests nothing"
+    );
+    assert_eq!(pilots.basis, pilot::Basis::CommittedOverPilots, "{pilots:?}");
+    assert!(
+        choice.segments >= committed.segments_for(1e-4),
+        "N = {} below the committed model's {}",
+        choice.segments,
+        committed.segments_for(1e-4)
+    );
+    // A mode's error settles within the pilots' N: there their model still rules.
+    let mode = Scene::Mode {
+        number: 2,
+        amplitude: 0.05,
+    };
+    assert!(!tolerance::Committed::look_up(&mode, 3.0, 1e-4).floors_pilots);
+}
+
 /// Past the windows the committed models were measured over (t = 3, and t = 5 for the graded
 /// rods' longer atlas) the pilots rule: from 45° to t = 5 the law fitted to t ≤ 3 once asked
 /// N = 491 where the pilots measured about 0.93/N, and the run missed 1e-3 after t = 4.88.

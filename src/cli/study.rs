@@ -96,8 +96,9 @@ pub struct StudyArgs {
 
     /// With --tolerance-check: references to read instead of computing them again, each a
     /// references.csv as the check writes it (a row at every 1/3000 of a time unit), or a
-    /// folder of such files. A scene's reference is read where one of them can judge the
-    /// check's smallest EPS (the least own error at the frames among those), else computed.
+    /// folder of such files. A scene's reference is read where one of them has it (the least
+    /// own error among those), else computed; a tolerance it cannot judge (its own error above
+    /// a tenth of EPS at every 1/3000) is skipped, and said.
     #[arg(long, value_name = "PATH", num_args = 1.., requires = "tolerance_check")]
     pub references: Vec<PathBuf>,
 

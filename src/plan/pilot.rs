@@ -162,8 +162,11 @@ pub enum Basis {
     Held,
     /// The scene's own error model, fitted to the pilots' estimates ([`Pilot::model`]).
     OwnModel,
-    /// The committed model, asking fewer segments than the pilots' own ([`tighter_model`]).
+    /// The committed model, asking fewer segments than the pilots' own ([`ruling_model`]).
     CommittedTighter,
+    /// The committed model, for a release, where the pilots' own asked fewer segments
+    /// ([`Committed::floors_pilots`]).
+    CommittedOverPilots,
     /// The committed model alone: no pilot was worth its cost, or none measured anything.
     Committed,
     /// The committed model, from the release atlas of the chosen rods
@@ -182,6 +185,9 @@ impl Basis {
             Self::CommittedTighter => {
                 "the committed error model, here tighter than the pilots' own (measured at N ≤ 64)"
             }
+            Self::CommittedOverPilots => {
+                "the committed error model, measured up to large N, over the pilots' own, which asked fewer rods: a release's error constant goes on growing past the pilots' N ≤ 64"
+            }
             Self::Atlas => {
                 "the release atlas of the chosen rods: their worst error to t = 3 at every 1/3000 of a time unit, measured at the release angles 10° apart (the chain's rods from 0° up to N = 566, below 20° to 1131, the graded rods from 20° up to N = 1600; and to t = 5 from 40° for a longer run, up to N = 1131), at this angle's own N where the atlas measured it (one of those angles, or of the 5°, 15°, …, 85° between them) against a reference that can judge the tolerance, else from its two neighbours times the margin the angles between them showed, or from the largest error of every angle measured times how far one angle strayed above all the others, whichever asks fewer rods (`scripts/release-atlas.sh`)"
             }
@@ -196,7 +202,9 @@ impl Basis {
         match self {
             Self::Held => "a pilot held",
             Self::OwnModel => "pilots' model",
-            Self::CommittedTighter | Self::Committed => "committed model",
+            Self::CommittedTighter | Self::CommittedOverPilots | Self::Committed => {
+                "committed model"
+            }
             Self::Atlas => "release atlas",
         }
     }
@@ -313,7 +321,7 @@ fn climb(
 }
 
 /// The cheapest run, by `seconds`, of at least `fewest` segments (the pilots' first level),
-/// that the pilots' models allow (each method's [`tighter_model`]) and that `fits`.
+/// that the pilots' models allow (each method's [`ruling_model`]) and that `fits`.
 fn cheapest_modelled(
     eps: f64,
     duration: f64,
@@ -327,12 +335,14 @@ fn cheapest_modelled(
         .iter()
         .filter_map(|pilot| {
             let method = pilot.method;
-            let model = tighter_model(method, eps, models, pilots)?;
+            let model = ruling_model(method, eps, models, pilots)?;
             let choice = tolerance::by_model(method, &model, eps, fewest, duration);
             if !fits(method, choice.segments, choice.dt) {
                 return None;
             }
+            let own_asks = pilot.model.map_or(0, |own| own.segments_for(eps));
             let basis = match model == models.model(method) {
+                true if own_asks < choice.segments => Basis::CommittedOverPilots,
                 true => Basis::CommittedTighter,
                 false => Basis::OwnModel,
             };
@@ -369,15 +379,21 @@ fn own_model(method: MethodKind, measured: &[(usize, f64)]) -> Option<ErrorModel
 }
 
 /// Of `method`'s own model (from its pilots) and its committed one (in `models`, for this
-/// scene, duration and tolerance: [`Committed::look_up`]), the one that asks fewer segments for `eps`, the
-/// committed one only where it was measured over the run's duration ([`Committed::covers`]:
-/// from 45° to t = 5, the law fitted to t ≤ 3 asked N = 491 where the pilots' 0.93/N was near
-/// the truth, and the run missed 1e-3); `None` without an own model. Both
-/// bound measured errors: the own model the scene's at N ≤ 64, extrapolated; the committed one the release atlas's at this angle or its neighbours, or the
-/// worst of six scenes, up to large N. Where a whip's error constant falls at large N, which
-/// the pilots cannot see, the committed model is the tighter (from 30°: 0.49/N against the
-/// pilots' 0.84/N).
-pub fn tighter_model(
+/// scene, duration and tolerance: [`Committed::look_up`]), the one the choice rests on; `None`
+/// without an own model. The committed one only where it was measured over the run's duration
+/// ([`Committed::covers`]: from 45° to t = 5, the law fitted to t ≤ 3 asked N = 491 where the
+/// pilots' 0.93/N was near the truth, and the run missed 1e-3), and there:
+/// - for a release, always ([`Committed::floors_pilots`]): its error constant goes on growing
+///   past the pilots' N (from 80°, fitted at 0.14/N at N ≤ 64, it is 0.30/N at N = 2 639,
+///   where the pilots' own model asked N = 2 639 for 1e-4 and the run missed it by 15 %);
+/// - else where it asks fewer segments for `eps`.
+///
+/// Both bound measured errors: the own model the scene's at N ≤ 64, extrapolated; the
+/// committed one the release atlas's at this angle or its neighbours, or the worst of six
+/// scenes, up to large N. Where a whip's error constant falls at large N, which the pilots
+/// cannot see, the committed model is the tighter (from 30°: 0.49/N against the pilots'
+/// 0.84/N).
+pub fn ruling_model(
     method: MethodKind,
     eps: f64,
     models: &Committed,
@@ -385,8 +401,9 @@ pub fn tighter_model(
 ) -> Option<ErrorModel> {
     let own = pilots.iter().find(|p| p.method == method)?.model?;
     let committed = models.model(method);
+    let tighter = committed.segments_for(eps) < own.segments_for(eps);
     Some(
-        if models.covers(method) && committed.segments_for(eps) < own.segments_for(eps) {
+        if models.covers(method) && (models.floors_pilots || tighter) {
             committed
         } else {
             own
@@ -466,7 +483,11 @@ pub fn choose(
     if let Some(best) = best {
         let from_atlas = models.source(best.choice.method) == Source::Atlas;
         let basis = match best.basis {
-            Basis::Committed | Basis::CommittedTighter if from_atlas => Basis::Atlas,
+            Basis::Committed | Basis::CommittedTighter | Basis::CommittedOverPilots
+                if from_atlas =>
+            {
+                Basis::Atlas
+            }
             basis => basis,
         };
         return Ok((best.choice, Pilots { flown, basis }));

@@ -80,6 +80,12 @@ pub struct Committed {
     /// Whether the committed models were measured on scenes of this kind (releases and
     /// modes); for a fold or a shake they were not, and only the pilots measure.
     pub measured_here: bool,
+    /// Whether the pilots' own model may not ask fewer segments than a committed model that
+    /// covers the run ([`Committed::covers`]): for a release, whose error constant goes on
+    /// growing past the pilots' N ≤ 64 (from 80° the chain's pilots fit 0.14/N, ×1.9 for
+    /// safety, and at the N = 2 639 that asked, the tip erred by 1.15e-4 at 1e-4, 0.30/N).
+    /// A mode's error settles within the pilots' N, and its own model stands.
+    pub floors_pilots: bool,
 }
 
 impl Committed {
@@ -88,6 +94,7 @@ impl Committed {
     /// worst of six scenes. None for a fold or a shake ([`Committed::measured_here`]).
     pub fn look_up(scene: &Scene, duration: f64, tolerance: f64) -> Self {
         let measured_here = matches!(scene, Scene::Release { .. } | Scene::Mode { .. });
+        let floors_pilots = matches!(scene, Scene::Release { .. });
         let models = MethodKind::ALL
             .into_iter()
             .map(
@@ -101,6 +108,7 @@ impl Committed {
             models,
             duration,
             measured_here,
+            floors_pilots,
         }
     }
 

@@ -295,16 +295,14 @@ fn tolerance_check(
     let read =
         crate::study::read_reference::read_all(&args.references, &spec.scenes, spec.duration)?;
     let (mut read_for, mut too_coarse) = (Vec::new(), Vec::new());
+    let judges_all =
+        crate::study::tolerance_check::REFERENCE_MARGIN * spec.smallest_tolerance();
     for scene in &spec.scenes {
-        use crate::study::tolerance_check::{best_read, usable};
-        match (usable(&spec, &read, scene), best_read(&read, scene)) {
-            (Some(r), _) => read_for.push(format!("{scene} (from {})", r.source.display())),
-            (None, Some(r)) => too_coarse.push(format!(
-                "{scene} ({} errs by {:.1e} at the frames)",
-                r.source.display(),
-                r.own_error
-            )),
-            (None, None) => {}
+        if let Some(r) = crate::study::tolerance_check::best_read(&read, scene) {
+            read_for.push(format!("{scene} (from {})", r.source.display()));
+            if r.own_error > judges_all {
+                too_coarse.push(format!("{scene} (errs by {:.1e})", r.own_error));
+            }
         }
     }
     if !args.references.is_empty() {
@@ -315,7 +313,7 @@ fn tolerance_check(
         say(
             session,
             format!(
-                "rope study: references read: {}; read but computed again, too coarse to judge {:.0e}: {}",
+                "rope study: references read: {}; of these, too coarse to judge {:.0e} (its cells skipped): {}",
                 list(&read_for),
                 spec.smallest_tolerance(),
                 list(&too_coarse)
