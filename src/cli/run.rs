@@ -21,7 +21,9 @@ pub struct RunArgs {
     pub segments: usize,
 
     /// Time step k in time units sqrt(L/g) [default: a stable, accurate value for the method
-    /// and N, printed at the start].
+    /// and N, printed at the start; for midpoint, stable at any step, past N = 100 the step
+    /// its tip needs, 0.8 h (1600 / N)^0.4 at most 1e-3 (1/1080 at N = 1000), whose time
+    /// error stays below the rope's own spatial error].
     #[arg(long, allow_negative_numbers = true, allow_hyphen_values = true)]
     pub dt: Option<f64>,
 

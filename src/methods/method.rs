@@ -296,19 +296,30 @@ pub struct Descriptor {
     pub plannable: fn(&Scene, f64) -> bool,
 }
 
-/// The step a method's tip needs at N segments: `times_h` × h (its time error grows as
-/// (k N)² against a spatial error that falls as h), at most `largest`, rounded down to 1, 2 or
-/// 5 × 10^k.
+/// The step a method's tip needs at N segments, at most `largest`:
+/// k = `times_h` × h × (`from` / N)^`shrink`. Its time error grows as k² times a constant that
+/// itself grows with N (a finer rope resolves a faster whip), against a spatial error that
+/// falls as h, so past `from` the step falls faster than h. Below `largest` it is brought down
+/// to 1/(120 m) for a whole m ([`TOLERANCE_STEP_GRID`]), as `--tolerance`'s steps are: frames
+/// at 60, 30, 20, … per time unit then fall on even steps, which the live estimate's shadow
+/// shares.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AccurateStep {
     pub times_h: f64,
+    pub from: usize,
+    pub shrink: f64,
     pub largest: f64,
 }
 
 impl AccurateStep {
     /// The step at `segments` segments.
     pub fn at(&self, segments: usize) -> f64 {
-        round_down_nicely((self.times_h / segments as f64).min(self.largest))
+        let n = segments.max(1) as f64;
+        let wanted = self.times_h / n * (self.from as f64 / n).powf(self.shrink);
+        match wanted >= self.largest {
+            true => self.largest,
+            false => whole_division(TOLERANCE_STEP_GRID, wanted),
+        }
     }
 }
 

@@ -87,13 +87,17 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     blow_up: &[],
     // Two fifths of the limit (1e-3 at N = 100): a pair of steps of 5e-4, `rattle`'s step.
     default_step_fraction: 0.4,
-    // Past N = 100, k = 0.8 h (at most 1e-3) instead: from 0°, 30° and 80° to t = 3 the tip
-    // moves from the limit's step by at most 0.59 of the spatial error (the distance to 2N)
-    // at N = 200 … 1 600, in 3.4 to 8 times less CPU at N ≥ 400
-    // (`cargo run --release --example midpoint_step default`, docs/measurements.md). Its own
-    // steps still shrink where a rod turns fast.
+    // Past N = 100, what its tip needs instead: k = 0.8 h (1600 / N)^0.4, at most 1e-3, on
+    // the 1/(120 m) grid below it (1/1080 at N = 1 000, 1/2040 at 1 600, 1/5280 at 3 200).
+    // Its time error goes as k² N^2.8 from 0° (a finer rope resolves a faster whip), so the
+    // step holds that error near a fixed share of the spatial error (the distance to 2N)
+    // from N = 800 up, and the 1e-3 cap below. From 0°, 30° and 80° to t = 3, at every step:
+    // `cargo run --release --example midpoint_step`, docs/measurements.md. Its own steps still
+    // shrink where a rod turns fast.
     accurate_step: Some(crate::methods::method::AccurateStep {
         times_h: 0.8,
+        from: 1600,
+        shrink: 0.4,
         largest: 1e-3,
     }),
     refuses_unstable_step: false,
