@@ -62,13 +62,13 @@ fn main() {
         .get(1)
         .filter(|k| *k != "default")
         .map(|k| k.parse().expect("K, a step, or default"));
-    let segments: Vec<usize> = args
-        .get(2)
-        .map_or(vec![100, 200, 400, 800, 1000, 1600, 3200], |l| {
-            l.split(',')
-                .map(|n| n.parse().expect("N, a count"))
-                .collect()
-        });
+    let segments: Vec<usize> =
+        args.get(2)
+            .map_or(vec![100, 200, 400, 800, 1000, 1600, 3200], |l| {
+                l.split(',')
+                    .map(|n| n.parse().expect("N, a count"))
+                    .collect()
+            });
     let d = MethodKind::Midpoint.descriptor();
     let limited = |n: usize| round_down_nicely(d.default_step_fraction * d.stability_limit(n));
     let before = |n: usize| limited(n).max(round_down_nicely((0.8 / n as f64).min(1e-3)));

@@ -356,7 +356,11 @@ fn within_the_committed_window_a_releases_pilots_never_ask_fewer_rods_than_the_c
         own.segments_for(1e-4) < committed.segments_for(1e-4),
         "the pilots' own model no longer asks fewer: the test tests nothing"
     );
-    assert_eq!(pilots.basis, pilot::Basis::CommittedOverPilots, "{pilots:?}");
+    assert_eq!(
+        pilots.basis,
+        pilot::Basis::CommittedOverPilots,
+        "{pilots:?}"
+    );
     assert!(
         choice.segments >= committed.segments_for(1e-4),
         "N = {} below the committed model's {}",

@@ -274,7 +274,12 @@ pub fn announce(asked: &Asked, plans: &[Planned]) -> Vec<Notice> {
             let why = match method.accurate_step {
                 Some(a) if plan.dt > method.default_step_fraction * limit => format!(
                     "what its tip needs, {} h ({} / N)^{} at most {:e}, above {} of its estimated stability limit {limit:.3e}: {}",
-                    a.times_h, a.from, a.shrink, a.largest, method.default_step_fraction, method.past_limit
+                    a.times_h,
+                    a.from,
+                    a.shrink,
+                    a.largest,
+                    method.default_step_fraction,
+                    method.past_limit
                 ),
                 _ => format!(
                     "estimated stability limit {limit:.3e}: {}",

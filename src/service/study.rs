@@ -295,8 +295,7 @@ fn tolerance_check(
     let read =
         crate::study::read_reference::read_all(&args.references, &spec.scenes, spec.duration)?;
     let (mut read_for, mut too_coarse) = (Vec::new(), Vec::new());
-    let judges_all =
-        crate::study::tolerance_check::REFERENCE_MARGIN * spec.smallest_tolerance();
+    let judges_all = crate::study::tolerance_check::REFERENCE_MARGIN * spec.smallest_tolerance();
     for scene in &spec.scenes {
         if let Some(r) = crate::study::tolerance_check::best_read(&read, scene) {
             read_for.push(format!("{scene} (from {})", r.source.display()));
