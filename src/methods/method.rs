@@ -321,6 +321,14 @@ impl AccurateStep {
             false => whole_division(TOLERANCE_STEP_GRID, wanted),
         }
     }
+
+    /// The rule in a run's words: "0.8 h (1600 / N)^0.4 at most 1e-3".
+    pub fn rule(&self) -> String {
+        format!(
+            "{} h ({} / N)^{} at most {:e}",
+            self.times_h, self.from, self.shrink, self.largest
+        )
+    }
 }
 
 /// When a method blew up at one N, over the steps of the blow-up map.

@@ -273,11 +273,8 @@ pub fn announce(asked: &Asked, plans: &[Planned]) -> Vec<Notice> {
         } else if asked.tolerance.is_none() && !asked.dt_given {
             let why = match method.accurate_step {
                 Some(a) if plan.dt > method.default_step_fraction * limit => format!(
-                    "what its tip needs, {} h ({} / N)^{} at most {:e}, above {} of its estimated stability limit {limit:.3e}: {}",
-                    a.times_h,
-                    a.from,
-                    a.shrink,
-                    a.largest,
+                    "what its tip needs, {}, above {} of its estimated stability limit {limit:.3e}: {}",
+                    a.rule(),
                     method.default_step_fraction,
                     method.past_limit
                 ),
