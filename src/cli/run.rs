@@ -4,6 +4,8 @@ use super::limits::LimitArgs;
 use super::scene::SceneArgs;
 use crate::error::ConfigError;
 use crate::methods::MethodKind;
+use crate::model::Scene;
+use crate::plan::pilot::FirstPilot;
 use crate::plan::runs::{Planned, RunRequest, plan_scene};
 use crate::recording::destinations::OutputArgs;
 use std::path::PathBuf;
@@ -145,6 +147,15 @@ pub enum DefaultMethod {
 impl RunArgs {
     /// Validates the flags into the runs to make, in order.
     pub fn plans(&self) -> Result<Vec<Planned>, ConfigError> {
+        self.plans_telling(|_, _| {})
+    }
+
+    /// As [`RunArgs::plans`], telling `before_pilots` of each scene's first `--tolerance`
+    /// pilot before it flies.
+    pub fn plans_telling(
+        &self,
+        before_pilots: impl Fn(&Scene, FirstPilot),
+    ) -> Result<Vec<Planned>, ConfigError> {
         let scenes = self.scene.scenes()?;
         if self.duration.is_infinite() && (self.repeat.is_some() || scenes.len() > 1) {
             return Err(ConfigError::Loop(
@@ -160,7 +171,7 @@ impl RunArgs {
         let request = self.request();
         scenes
             .into_iter()
-            .map(|scene| plan_scene(&request, scene))
+            .map(|scene| plan_scene(&request, scene, |first| before_pilots(&scene, first)))
             .collect()
     }
 

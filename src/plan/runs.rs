@@ -1,7 +1,7 @@
 //! The runs a request asks for, one [`Planned`] per scene: each method's validated
 //! [`RunPlan`], and with `--tolerance` what the rule chose and what it rests on.
 
-use super::pilot::{self, Pilots};
+use super::pilot::{self, FirstPilot, Pilots};
 use super::tolerance::Choice;
 use crate::error::ConfigError;
 use crate::methods::MethodKind;
@@ -53,9 +53,14 @@ impl Planned {
     }
 }
 
-/// Validates `request` for one scene; with `--tolerance`, also says what the rule chose;
+/// Validates `request` for one scene; with `--tolerance`, also says what the rule chose
+/// (telling `before_pilots` of its first pilot before one flies: [`pilot::choose_telling`]);
 /// with a list of methods, validates each (naming the one that cannot run).
-pub fn plan_scene(request: &RunRequest, scene: Scene) -> Result<Planned, ConfigError> {
+pub fn plan_scene(
+    request: &RunRequest,
+    scene: Scene,
+    before_pilots: impl FnOnce(FirstPilot),
+) -> Result<Planned, ConfigError> {
     let compares = !request.others.is_empty();
     let asked = RunConfig {
         method: request.method,
@@ -76,8 +81,9 @@ pub fn plan_scene(request: &RunRequest, scene: Scene) -> Result<Planned, ConfigE
         Some(eps) => {
             // `--tolerance EPS` for this scene, this run's duration and memory: never its
             // frames, so that where and how often it is drawn changes nothing it models.
+            let memory = request.limits.memory();
             let (choice, pilots) =
-                pilot::choose(eps, &scene, request.duration, request.limits.memory())?;
+                pilot::choose_telling(eps, &scene, request.duration, memory, before_pilots)?;
             // A loose tolerance may choose a step longer than the default frame
             // interval: then a frame at every step the estimate's shadow shares, unless
             // --log-rate asked for more (never more than a frame a step: below).

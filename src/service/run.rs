@@ -3,7 +3,7 @@
 //! finished run until stopped, and returns how the last run ended. What it says goes to the
 //! [`Listener`] of its [`Session`] as notices.
 
-use super::notices::{self, Listener};
+use super::notices::{self, Listener, Notice, Topic};
 use super::{ServiceError, Session};
 use crate::cli::{RunArgs, check_writable_file, write_whole};
 use crate::methods::MethodKind;
@@ -17,6 +17,7 @@ use crate::recording::error::OutputError;
 use crate::recording::logger::RopeLogger;
 use crate::recording::table::Tables;
 use crate::recording::viewer_sinks::ViewerLink;
+use crate::run::cost;
 use crate::run::progress::{Counter, Progress};
 use crate::run::shake_figures::SweepPoint;
 use crate::run::{Status, Summary};
@@ -35,10 +36,29 @@ pub struct Outcome {
     pub exit_status: u8,
 }
 
+/// Predicted CPU seconds of a first `--tolerance` pilot from which the run says it before it
+/// flies.
+const SAY_PILOTS_FROM: f64 = 2.0;
+
 /// `rope run`: the scenes in turn (and again, with `--loop`), into one recording.
 pub fn run(args: &RunArgs, session: &Session) -> Result<Outcome, ServiceError> {
     let tell = |n| session.listener.tell(n);
-    let plans = args.plans()?;
+    // Pilots that take a while are said before they fly (a narrow fold's start at sixteen
+    // rods across the gap): the first line of a run is not a long silence.
+    let plans = args.plans_telling(|scene, first| {
+        if first.seconds >= SAY_PILOTS_FROM {
+            tell(Notice::new(
+                Topic::Pilots,
+                format!(
+                    "rope: tolerance pilots: measuring the {scene} first, from {} at N = {} to t = {} (about {} of CPU for that one)…",
+                    first.method,
+                    first.segments,
+                    first.duration,
+                    cost::seconds_text(first.seconds)
+                ),
+            ));
+        }
+    })?;
     let asked = notices::Asked {
         tolerance: args.tolerance,
         dt_given: args.dt.is_some(),
