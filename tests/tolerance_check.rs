@@ -61,6 +61,23 @@ fn the_quick_tolerance_check_holds_eps_against_a_converged_reference_in_each_sce
         let cheapest = cell.cheapest.expect("a grid run that holds EPS");
         assert!(cheapest.worst <= eps);
     }
+    // The cells as a program reads them: a row each, the choice and its worst error as measured.
+    let path = std::env::temp_dir().join(format!("rope-check-{}.csv", std::process::id()));
+    rope::study::tolerance_csv::write(cells, &path).unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    std::fs::remove_file(&path).ok();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let column = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), cells.len(), "{text}");
+    for (row, cell) in rows.iter().zip(cells) {
+        let chosen = cell.chosen.unwrap();
+        assert_eq!(row[column("method")], chosen.method.name(), "{text}");
+        assert_eq!(row[column("held")], "true", "{text}");
+        let worst: f64 = row[column("worst")].parse().unwrap();
+        assert_eq!(worst, chosen.worst, "{text}");
+    }
 }
 
 /// The committed `assets/tolerance-check/references.csv` (written by the full check): every

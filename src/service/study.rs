@@ -343,7 +343,7 @@ fn tolerance_check(
     report(session, markdown);
     wrote(
         session,
-        "tolerance_check.md, references.csv and tolerance_check.svg/.png",
+        "tolerance_check.md, tolerance_check.csv, references.csv and tolerance_check.svg/.png",
         &args.out,
     );
     Ok(())

@@ -40,6 +40,7 @@ pub mod sweep_chart;
 pub mod tip_reference;
 pub mod tolerance_chart;
 pub mod tolerance_check;
+pub mod tolerance_csv;
 pub mod trajectory;
 
 pub use grid::{Row, Spec, Status, fit, run_cell, run_grid, shape};
@@ -351,6 +352,9 @@ pub fn execute_tolerance_check(
         .with_context(|| format!("writing {}", csv.display()))?;
     let markdown = tolerance_check::markdown(spec, &checked, command);
     write(&out.join("tolerance_check.md"), &markdown)?;
+    let table = out.join("tolerance_check.csv");
+    tolerance_csv::write(&checked.cells, &table)
+        .with_context(|| format!("writing {}", table.display()))?;
     charts::register_font()?;
     tolerance_chart::write(out, &checked.cells)?;
     Ok(markdown)
