@@ -236,18 +236,21 @@ struct Best {
 /// The ladder: each level for every method not ruled out, cheapest first, until a pilot holds
 /// `eps` by its own [`Pilot::bound`] (and its run `fits`), or the next pilot would take the
 /// pilots' predicted CPU past what the best choice known so far would cost (measuring must
-/// cost less than it can save). That best is at first `committed`, then after each pilot the
-/// cheapest that the pilots' own models allow, where cheaper: a scene whose pilots show it
-/// cheap stops measuring early. `seconds` is a run's predicted CPU, shadow included.
+/// cost less than it can save). That best is at first the committed models' choice
+/// ([`tolerance::choose_committed`]), then after each pilot the cheapest that the pilots' own
+/// models allow, where cheaper: a scene whose pilots show it cheap stops measuring early.
+/// `seconds` is a run's predicted CPU, shadow included; `before_flying` is told of the first
+/// pilot just before it flies (not at all where none does).
 fn climb(
     eps: f64,
     scene: &Scene,
     duration: f64,
     models: &Committed,
-    committed: Option<Choice>,
     seconds: impl Fn(&Choice) -> f64,
     fits: impl Fn(MethodKind, usize, f64) -> bool + Copy,
+    before_flying: impl FnOnce(FirstPilot),
 ) -> (Vec<Pilot>, Option<Best>) {
+    let mut before_flying = Some(before_flying);
     let mut pilots: Vec<Pilot> = tolerance::startable(scene, duration)
         .map(Pilot::new)
         .collect();
@@ -263,6 +266,7 @@ fn climb(
             .find(|p| p.method.descriptor().discretization == discretization)
             .map(|p| p.method);
     }
+    let committed = tolerance::choose_committed(eps, duration, scene, models, fits);
     let by_committed = committed.map(|choice| Best {
         choice,
         seconds: seconds(&choice),
@@ -278,9 +282,18 @@ fn climb(
             if pilot.diverged.is_some() || pilot.measured_by.is_some() {
                 continue;
             }
-            spent += level_seconds(pilot.method, segments, duration);
+            let cost = level_seconds(pilot.method, segments, duration);
+            spent += cost;
             if best.is_some_and(|b| spent > b.seconds) {
                 return (pilots, best);
+            }
+            if let Some(tell) = before_flying.take() {
+                tell(FirstPilot {
+                    method: pilot.method,
+                    segments,
+                    duration: duration.min(WINDOW),
+                    seconds: cost,
+                });
             }
             pilot.fly_at(scene, segments, duration);
             if let Some((flown, bound)) = pilot.bound() {
@@ -335,17 +348,11 @@ fn cheapest_modelled(
         .iter()
         .filter_map(|pilot| {
             let method = pilot.method;
-            let model = ruling_model(method, eps, models, pilots)?;
+            let (model, basis) = ruling_model(pilot, eps, models)?;
             let choice = tolerance::by_model(method, &model, eps, fewest, duration);
             if !fits(method, choice.segments, choice.dt) {
                 return None;
             }
-            let own_asks = pilot.model.map_or(0, |own| own.segments_for(eps));
-            let basis = match model == models.model(method) {
-                true if own_asks < choice.segments => Basis::CommittedOverPilots,
-                true => Basis::CommittedTighter,
-                false => Basis::OwnModel,
-            };
             Some(Best {
                 choice,
                 seconds: seconds(&choice),
@@ -378,9 +385,9 @@ fn own_model(method: MethodKind, measured: &[(usize, f64)]) -> Option<ErrorModel
     })
 }
 
-/// Of `method`'s own model (from its pilots) and its committed one (in `models`, for this
-/// scene, duration and tolerance: [`Committed::look_up`]), the one the choice rests on; `None`
-/// without an own model. The committed one only where it was measured over the run's duration
+/// Of `pilot`'s method's own model (from its pilots) and its committed one (in `models`, for
+/// this scene, duration and tolerance: [`Committed::look_up`]), the one the choice rests on,
+/// and which it is; `None` without an own model. The committed one only where it was measured over the run's duration
 /// ([`Committed::covers`]: from 45° to t = 5, the law fitted to t ≤ 3 asked N = 491 where the
 /// pilots' 0.93/N was near the truth, and the run missed 1e-3), and there:
 /// - for a release, always ([`Committed::floors_pilots`]): its error constant goes on growing
@@ -393,22 +400,15 @@ fn own_model(method: MethodKind, measured: &[(usize, f64)]) -> Option<ErrorModel
 /// scenes, up to large N. Where a whip's error constant falls at large N, which the pilots
 /// cannot see, the committed model is the tighter (from 30°: 0.49/N against the pilots'
 /// 0.84/N).
-pub fn ruling_model(
-    method: MethodKind,
-    eps: f64,
-    models: &Committed,
-    pilots: &[Pilot],
-) -> Option<ErrorModel> {
-    let own = pilots.iter().find(|p| p.method == method)?.model?;
-    let committed = models.model(method);
+pub fn ruling_model(pilot: &Pilot, eps: f64, models: &Committed) -> Option<(ErrorModel, Basis)> {
+    let own = pilot.model?;
+    let committed = models.model(pilot.method);
     let tighter = committed.segments_for(eps) < own.segments_for(eps);
-    Some(
-        if models.covers(method) && (models.floors_pilots || tighter) {
-            committed
-        } else {
-            own
-        },
-    )
+    Some(match models.covers(pilot.method) {
+        true if tighter => (committed, Basis::CommittedTighter),
+        true if models.floors_pilots => (committed, Basis::CommittedOverPilots),
+        _ => (own, Basis::OwnModel),
+    })
 }
 
 /// Frames per time unit a choice's cost counts, whatever the run will log: the frames cost
@@ -433,7 +433,7 @@ pub fn choose(
 }
 
 /// The first pilot a choice flies, before it flies: the cheapest method at the first level,
-/// and its predicted CPU seconds (shadow included).
+/// and its predicted CPU seconds (shadow included, as the climb counts them).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FirstPilot {
     pub method: MethodKind,
@@ -443,8 +443,9 @@ pub struct FirstPilot {
     pub seconds: f64,
 }
 
-/// As [`choose`], telling `before_flying` of the first pilot once the request has passed
-/// every refusal and before a pilot flies: a run says it where the pilots take a while (a
+/// As [`choose`], telling `before_flying` of the first pilot just before it flies, once the
+/// request has passed every refusal (not at all where no pilot flies): a run says it where the
+/// pilots take a while (a
 /// narrow fold's pilots start at sixteen rods across its gap: from a gap of 0.005, N = 3 200,
 /// 12 s of CPU to t = 1).
 pub fn choose_telling(
@@ -500,23 +501,10 @@ pub fn choose_telling(
             });
         }
     }
-    let first = levels(scene)[0];
-    if let Some(pilot) = tolerance::startable(scene, duration)
-        .map(|method| FirstPilot {
-            method,
-            segments: first,
-            duration: duration.min(WINDOW),
-            seconds: level_seconds(method, first, duration),
-        })
-        .min_by(|a, b| a.seconds.total_cmp(&b.seconds))
-    {
-        before_flying(pilot);
-    }
     // The committed models, looked up once: the choice and the pilots' climb read them.
     let models = Committed::look_up(scene, duration, eps);
-    let committed = tolerance::choose_committed(eps, duration, scene, &models, fits);
     let seconds = |c: &Choice| cost_of(c.method, c.segments, c.dt).seconds;
-    let (flown, best) = climb(eps, scene, duration, &models, committed, seconds, fits);
+    let (flown, best) = climb(eps, scene, duration, &models, seconds, fits, before_flying);
     if let Some(best) = best {
         let from_atlas = models.source(best.choice.method) == Source::Atlas;
         let basis = match best.basis {
