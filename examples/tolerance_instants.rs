@@ -24,7 +24,7 @@
 mod args;
 
 use rope::model::{Scene, ShakeStart};
-use rope::plan::pilot;
+use rope::plan::tolerance;
 use rope::study::read_reference::{CheckReference, read_all};
 use rope::study::tip_reference::{ConvergedTip, LOG_RATE, TipReference};
 use rope::study::tolerance_check::{Cell, JUDGE_RATE, REFERENCE_MARGIN, measure, reference_method};
@@ -118,7 +118,7 @@ fn main() -> anyhow::Result<()> {
                 continue;
             };
             let started = Instant::now();
-            let (choice, pilots) = pilot::choose(eps, scene, duration, u64::MAX)?;
+            let (choice, pilots) = tolerance::choose(eps, scene, duration, u64::MAX)?;
             let pilot_seconds = started.elapsed().as_secs_f64();
             let (m, n, dt) = (choice.method, choice.segments, choice.dt);
             chosen_runs.push((*scene, eps, m, n, dt));

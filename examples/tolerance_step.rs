@@ -7,7 +7,7 @@
 
 use rope::methods::MethodKind;
 use rope::model::Scene;
-use rope::plan::tolerance;
+use rope::plan::choice;
 use rope::study::tip_reference::TipReference;
 use rope::study::tolerance_check::measure;
 
@@ -33,7 +33,7 @@ fn main() -> anyhow::Result<()> {
     for scene in &scenes {
         let reference = TipReference::compute(scene, 400, 3.0)?;
         eprintln!("{scene}: reference own error {:.1e}", reference.own_error);
-        for method in tolerance::startable(scene, 3.0).filter(|m| *m != MethodKind::Seed) {
+        for method in choice::startable(scene, 3.0).filter(|m| *m != MethodKind::Seed) {
             let d = method.descriptor();
             for n in [16, 32, 64, 100] {
                 let base = worst(method, scene, n, d.default_dt(n), &reference);

@@ -8,7 +8,8 @@ mod common;
 use common::cli::{Recording, Scratch, rope, summary};
 use rope::methods::MethodKind;
 use rope::model::Scene;
-use rope::plan::tolerance;
+use rope::plan::choice;
+use rope::plan::error_model::law;
 use rope::run::{RunConfig, Verdict, pipeline};
 use rope::study::estimate_check::{self, Cell, FACTOR, Trajectory};
 use std::sync::atomic::AtomicBool;
@@ -28,7 +29,7 @@ fn cells(scene: Scene, segments: usize) -> Vec<Cell> {
     let reference = Trajectory::compute(&scene, REFERENCE_SEGMENTS, DURATION).unwrap();
     // The methods the rule may choose from the scene (the graded rods from a release at 20° and
     // above).
-    tolerance::startable(&scene, DURATION)
+    choice::startable(&scene, DURATION)
         .map(|m| estimate_check::run_cell(m, scene, segments, DURATION, &reference))
         .collect()
 }
@@ -58,7 +59,7 @@ fn the_committed_error_models_bound_the_worst_error_and_are_not_far_above_it() {
     // release to t = 3, through its whip.
     for cell in cells(THIRTY, 50) {
         let worst = cell.verdict().max_truth;
-        let bound = cell.method.descriptor().error_model.bound(cell.segments);
+        let bound = law(cell.method).bound(cell.segments);
         assert!(
             worst <= bound && bound <= 3.0 * worst,
             "{}: worst tip error {worst:.2e}, model's bound {bound:.2e}",
@@ -72,7 +73,7 @@ fn the_tolerance_rule_keeps_its_tolerance_through_the_whip_and_a_tighter_one_cos
     let reference = Trajectory::compute(&THIRTY, REFERENCE_SEGMENTS, DURATION).unwrap();
     let mut choices = Vec::new();
     for eps in [3e-2, 1e-2] {
-        let choice = tolerance::choose(eps, DURATION, &THIRTY, |_, _, _| true).unwrap();
+        let choice = choice::by_committed(eps, DURATION, &THIRTY, |_, _, _| true).unwrap();
         let cell =
             estimate_check::run_cell(choice.method, THIRTY, choice.segments, DURATION, &reference);
         let worst = cell.verdict().max_truth;
@@ -88,7 +89,8 @@ fn the_tolerance_rule_keeps_its_tolerance_through_the_whip_and_a_tighter_one_cos
     );
     // From the horizontal only the chain methods can start.
     let horizontal = Scene::Release { angle_deg: 0.0 };
-    let from_horizontal = tolerance::choose(1e-2, DURATION, &horizontal, |_, _, _| true).unwrap();
+    let from_horizontal =
+        choice::by_committed(1e-2, DURATION, &horizontal, |_, _, _| true).unwrap();
     assert_ne!(from_horizontal.method, MethodKind::Seed);
 }
 

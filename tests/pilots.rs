@@ -6,8 +6,8 @@ mod common;
 use common::cli::{run_judged, tip_samples};
 use rope::methods::MethodKind;
 use rope::model::{Point, Scene};
-use rope::plan::tolerance;
-use rope::plan::{atlas, pilot};
+use rope::plan::error_model::law;
+use rope::plan::{atlas, choice, committed, pilot, tolerance};
 use rope::study::tip_reference::TipReference;
 
 /// The largest distance, over a run's summary's tip samples, from the reference's tip.
@@ -161,7 +161,7 @@ fn a_pilot_whose_shadow_fails_flies_on_where_the_estimate_can_start() {
     // that level, not the seed: the seed flies the next levels, where it measures the first
     // order in h of its finite differences, and is not chosen (far dearer at 1e-3).
     let thirty = Scene::Release { angle_deg: 30.0 };
-    let (choice, pilots) = pilot::choose(1e-3, &thirty, 3.0, u64::MAX).unwrap();
+    let (choice, pilots) = tolerance::choose(1e-3, &thirty, 3.0, u64::MAX).unwrap();
     let seed = pilots.flown.iter().find(|p| p.method == MethodKind::Seed);
     let seed = seed.expect("the seed scheme can start from 30°: its pilot flies");
     assert!(seed.diverged.is_none(), "{seed:?}");
@@ -195,7 +195,7 @@ fn a_pilot_that_already_holds_is_the_run_chosen_and_the_climb_stops_there() {
         number: 1,
         amplitude: 0.05,
     };
-    let (choice, pilots) = pilot::choose(1e-3, &mode, 3.0, u64::MAX).unwrap();
+    let (choice, pilots) = tolerance::choose(1e-3, &mode, 3.0, u64::MAX).unwrap();
     assert_eq!(pilots.basis, pilot::Basis::Held);
     let held: Vec<_> = pilots
         .flown
@@ -250,11 +250,11 @@ fn pilots_stop_where_measuring_would_cost_more_than_the_committed_choice() {
     // it is never flown and the committed choice is made. (The seed's pilots, far cheaper a
     // level than the rods', fit within it up to the top.)
     let thirty = Scene::Release { angle_deg: 30.0 };
-    let (choice, pilots) = pilot::choose(1e-2, &thirty, 3.0, u64::MAX).unwrap();
-    let committed = tolerance::choose(1e-2, 3.0, &thirty, |_, _, _| true).unwrap();
+    let (choice, pilots) = tolerance::choose(1e-2, &thirty, 3.0, u64::MAX).unwrap();
+    let committed = choice::by_committed(1e-2, 3.0, &thirty, |_, _, _| true).unwrap();
     assert_eq!(choice, committed);
     assert_eq!(pilots.basis, pilot::Basis::Atlas);
-    let atlas = tolerance::from_atlas(choice.method, &thirty, 3.0, 1e-2).unwrap();
+    let atlas = committed::from_atlas(choice.method, &thirty, 3.0, 1e-2).unwrap();
     assert_eq!(choice.segments, atlas.segments_for(1e-2));
     let top = pilot::LEVELS[pilot::LEVELS.len() - 1];
     for p in &pilots.flown {
@@ -271,7 +271,7 @@ fn methods_of_one_discretization_fly_one_pilot_the_cheapest() {
     // errors are the rods' own, so only the cheapest of them, the chain, flies; the others
     // say whose pilots stand for theirs.
     let thirty = Scene::Release { angle_deg: 30.0 };
-    let (_, pilots) = pilot::choose(1e-3, &thirty, 3.0, u64::MAX).unwrap();
+    let (_, pilots) = tolerance::choose(1e-3, &thirty, 3.0, u64::MAX).unwrap();
     let of = |m: MethodKind| pilots.flown.iter().find(|p| p.method == m).unwrap();
     assert!(of(MethodKind::Chain).flew() && of(MethodKind::Chain).measured_by.is_none());
     for m in [MethodKind::Rattle, MethodKind::Midpoint] {
@@ -296,8 +296,8 @@ fn a_scene_its_pilots_show_cheaper_is_run_from_their_model_and_holds() {
         number: 2,
         amplitude: 0.05,
     };
-    let (choice, pilots) = pilot::choose(1e-3, &mode, 3.0, u64::MAX).unwrap();
-    let committed = tolerance::choose(1e-3, 3.0, &mode, |_, _, _| true).unwrap();
+    let (choice, pilots) = tolerance::choose(1e-3, &mode, 3.0, u64::MAX).unwrap();
+    let committed = choice::by_committed(1e-3, 3.0, &mode, |_, _, _| true).unwrap();
     assert_eq!(pilots.basis, pilot::Basis::OwnModel, "{pilots:?}");
     assert!(
         choice.segments * 4 < committed.segments,
@@ -342,8 +342,8 @@ fn a_scene_its_pilots_show_cheaper_is_run_from_their_model_and_holds() {
 #[test]
 fn within_the_committed_window_a_releases_pilots_never_ask_fewer_rods_than_the_committed_model() {
     let scene = Scene::Release { angle_deg: 80.0 };
-    let (choice, pilots) = pilot::choose(1e-4, &scene, 3.0, u64::MAX).unwrap();
-    let models = tolerance::Committed::look_up(&scene, 3.0, 1e-4);
+    let (choice, pilots) = tolerance::choose(1e-4, &scene, 3.0, u64::MAX).unwrap();
+    let models = committed::Committed::look_up(&scene, 3.0, 1e-4);
     assert!(models.floors_pilots && models.covers(choice.method));
     let own = pilots
         .flown
@@ -372,7 +372,7 @@ fn within_the_committed_window_a_releases_pilots_never_ask_fewer_rods_than_the_c
         number: 2,
         amplitude: 0.05,
     };
-    assert!(!tolerance::Committed::look_up(&mode, 3.0, 1e-4).floors_pilots);
+    assert!(!committed::Committed::look_up(&mode, 3.0, 1e-4).floors_pilots);
 }
 
 /// Past the windows the committed models were measured over (t = 3, and t = 5 for the graded
@@ -383,7 +383,7 @@ fn within_the_committed_window_a_releases_pilots_never_ask_fewer_rods_than_the_c
 #[test]
 fn past_the_committed_window_the_pilots_measured_figure_rules() {
     let scene = Scene::Release { angle_deg: 45.0 };
-    let (choice, pilots) = pilot::choose(1e-3, &scene, 6.0, u64::MAX).unwrap();
+    let (choice, pilots) = tolerance::choose(1e-3, &scene, 6.0, u64::MAX).unwrap();
     assert!(
         matches!(pilots.basis, pilot::Basis::OwnModel | pilot::Basis::Held),
         "{:?}",
@@ -406,7 +406,7 @@ fn past_the_committed_window_the_pilots_measured_figure_rules() {
         own.segments_for(1e-3)
     );
     // The test is of a run past every window; were one to grow past 6, it would test nothing.
-    const { assert!(6.0 > atlas::LONGER_WINDOW && 6.0 > tolerance::LAW_UNTIL) };
+    const { assert!(6.0 > atlas::LONGER_WINDOW && 6.0 > committed::LAW_UNTIL) };
 }
 
 /// From t = 3 to 5 the chain's one law, fitted to t ≤ 3, does not cover the run, and the
@@ -416,16 +416,16 @@ fn past_the_committed_window_the_pilots_measured_figure_rules() {
 #[test]
 fn from_45_degrees_to_t_5_the_graded_rods_longer_atlas_covers_the_run_and_the_law_does_not() {
     let scene = Scene::Release { angle_deg: 45.0 };
-    let models = tolerance::Committed::look_up(&scene, 5.0, 1e-3);
+    let models = committed::Committed::look_up(&scene, 5.0, 1e-3);
     assert!(!models.covers(MethodKind::Chain));
     assert!(models.covers(MethodKind::Graded));
-    assert_eq!(models.source(MethodKind::Graded), tolerance::Source::Atlas);
+    assert_eq!(models.source(MethodKind::Graded), committed::Source::Atlas);
     // The committed choice alone is made of the models that cover the run: the chain's law,
     // whose run would be predicted the cheaper, is not among them.
-    let committed = tolerance::choose(1e-3, 5.0, &scene, |_, _, _| true).unwrap();
+    let committed = choice::by_committed(1e-3, 5.0, &scene, |_, _, _| true).unwrap();
     assert_eq!(committed.method, MethodKind::Graded, "{committed:?}");
-    let law = MethodKind::Chain.descriptor().error_model;
-    let by_law = tolerance::by_model(MethodKind::Chain, &law, 1e-3, 16, 5.0);
+    let law = law(MethodKind::Chain);
+    let by_law = choice::by_model(MethodKind::Chain, &law, 1e-3, 16, 5.0);
     assert!(
         by_law.predicted_seconds < committed.predicted_seconds,
         "{committed:?}"
@@ -447,18 +447,18 @@ fn from_30_degrees_at_1e_4_the_graded_rods_are_chosen_from_their_atlas_for_a_fra
     // rods. The graded rods resolve the whip, and their atlas, against graded references that
     // err by a few 1e-6 from 20° to 30°, reaches 1e-4 there.
     let thirty = Scene::Release { angle_deg: 30.0 };
-    let (choice, pilots) = pilot::choose(1e-4, &thirty, 3.0, u64::MAX).unwrap();
+    let (choice, pilots) = tolerance::choose(1e-4, &thirty, 3.0, u64::MAX).unwrap();
     assert_eq!(choice.method, MethodKind::Graded, "{choice:?}");
     assert_eq!(pilots.basis, pilot::Basis::Atlas);
-    let law = MethodKind::Chain.descriptor().error_model;
-    let by_law = tolerance::by_model(MethodKind::Chain, &law, 1e-4, 16, 3.0);
+    let law = law(MethodKind::Chain);
+    let by_law = choice::by_model(MethodKind::Chain, &law, 1e-4, 16, 3.0);
     assert!(
         choice.predicted_seconds < 0.25 * by_law.predicted_seconds,
         "{choice:?} against the chain's law: {by_law:?}"
     );
     // Not from the horizontal, whose graded end rods spin on after the whip: no atlas there.
     let horizontal = Scene::Release { angle_deg: 0.0 };
-    assert!(tolerance::from_atlas(MethodKind::Graded, &horizontal, 3.0, 1e-2).is_none());
+    assert!(committed::from_atlas(MethodKind::Graded, &horizontal, 3.0, 1e-2).is_none());
 }
 
 /// From 37°, which no atlas measured, the graded atlas bounds the error by the larger of the
@@ -484,10 +484,10 @@ fn at_1e_4_an_atlas_serves_only_where_its_reference_can_judge_at_every_instant()
     for angle_deg in [10.0, 50.0, 60.0, 70.0, 80.0] {
         let scene = Scene::Release { angle_deg };
         for method in [MethodKind::Chain, MethodKind::Graded] {
-            let model = tolerance::from_atlas(method, &scene, 3.0, 1e-4);
+            let model = committed::from_atlas(method, &scene, 3.0, 1e-4);
             assert!(model.is_none(), "{angle_deg}°, {method}: {model:?}");
         }
-        let (_, pilots) = pilot::choose(1e-4, &scene, 3.0, u64::MAX).unwrap();
+        let (_, pilots) = tolerance::choose(1e-4, &scene, 3.0, u64::MAX).unwrap();
         assert_ne!(pilots.basis, pilot::Basis::Atlas, "{angle_deg}°");
     }
     for angle_deg in [20.0, 30.0, 40.0] {
@@ -505,22 +505,22 @@ fn past_t_3_the_graded_rods_are_chosen_only_from_40_degrees() {
     use rope::methods::graded::{SPIN_FREE_FROM, SPIN_FREE_LONGER_FROM};
     let graded = |angle_deg: f64, duration: f64| {
         let scene = Scene::Release { angle_deg };
-        tolerance::startable(&scene, duration).any(|m| m == MethodKind::Graded)
+        choice::startable(&scene, duration).any(|m| m == MethodKind::Graded)
     };
     assert!(graded(SPIN_FREE_FROM, 3.0) && graded(30.0, 3.0));
     assert!(!graded(30.0, 5.0) && !graded(39.0, 3.5));
     assert!(graded(SPIN_FREE_LONGER_FROM, 5.0) && graded(60.0, 5.0));
     assert!(!graded(10.0, 3.0) && !graded(10.0, 5.0));
     let thirty = Scene::Release { angle_deg: 30.0 };
-    let (_, pilots) = pilot::choose(1e-2, &thirty, 5.0, u64::MAX).unwrap();
+    let (_, pilots) = tolerance::choose(1e-2, &thirty, 5.0, u64::MAX).unwrap();
     assert!(pilots.flown.iter().all(|p| p.method != MethodKind::Graded));
     assert!(pilots.flown.iter().any(|p| p.method == MethodKind::Chain));
 }
 
 /// What `--tolerance eps` chooses for `scene` to `duration`, asserted to be the graded rods,
 /// from their atlas, within the N it measured.
-fn graded_rods_from_their_atlas(eps: f64, scene: &Scene, duration: f64) -> tolerance::Choice {
-    let (choice, pilots) = pilot::choose(eps, scene, duration, u64::MAX).unwrap();
+fn graded_rods_from_their_atlas(eps: f64, scene: &Scene, duration: f64) -> choice::Choice {
+    let (choice, pilots) = tolerance::choose(eps, scene, duration, u64::MAX).unwrap();
     assert_eq!(choice.method, MethodKind::Graded, "{choice:?}");
     assert_eq!(pilots.basis, pilot::Basis::Atlas);
     let graded_atlas = atlas::Atlas::of(MethodKind::Graded, duration).unwrap();

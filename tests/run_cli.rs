@@ -601,7 +601,7 @@ fn tolerance_flag_prints_its_choice_and_runs_it() {
     assert!(out.status.success(), "{stderr}");
     // The method the rule picks, its pilots flown (every limit is far off at this tolerance).
     let scene = rope::model::Scene::Release { angle_deg: 30.0 };
-    let (rule, _) = rope::plan::pilot::choose(1e-2, &scene, 1.0, u64::MAX).unwrap();
+    let (rule, _) = rope::plan::tolerance::choose(1e-2, &scene, 1.0, u64::MAX).unwrap();
     assert!(
         stderr.contains(&format!("tolerance 1e-2: chose the {} method", rule.method)),
         "{stderr}"

@@ -141,7 +141,7 @@ fn the_committed_references_obey_the_physics_of_the_string() {
 /// errs by about 0.5/N² on the chain's rods, within 1e-4 from N = 100 but not at 50.
 #[test]
 fn a_grid_that_holds_nothing_goes_on_past_its_largest_n_until_a_run_holds() {
-    use rope::plan::tolerance::startable;
+    use rope::plan::choice::startable;
     use rope::study::tolerance_check::grid_steps;
     use std::sync::atomic::{AtomicUsize, Ordering};
     let scene = Scene::Mode {

@@ -16,7 +16,6 @@
 //! RK4 in (φ, φ̇). No division by the tension anywhere, so it starts from the horizontal;
 //! inextensibility is exact by construction; the rods converge to the continuum at O(h²).
 
-use super::error_model::ErrorModel;
 use super::joint_forces::ForceSolver;
 use super::method::{self, Descriptor, Method, Observation};
 use crate::error::{ConfigError, Diverged};
@@ -59,11 +58,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     // Seven f64 vectors of RK4, and the joint-force solve's 2×2 gain and four 2-vectors.
     bytes_per_segment: 7 * 8 + 4 * 8 + 4 * 16,
     order_in_h: 2,
-    error_model: ErrorModel {
-        constant: 0.458,
-        order: 1.00,
-        safety: 1.07,
-    },
     colours: ([110, 170, 240], [10, 40, 140]),
     build: |scene, segments, dt| Ok(Box::new(Chain::new(scene, segments, dt)?)),
     plannable: |_, _| true,

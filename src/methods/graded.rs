@@ -50,11 +50,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     steady_cost: false,
     // The chain's vectors and the rods' lengths.
     bytes_per_segment: chain::DESCRIPTOR.bytes_per_segment + 8,
-    // The chain's one law, not refitted: it bounds every entry of the graded rods' atlas
-    // (20° to 90°, N = 16 to 1131, at most 0.40/N; `plan::atlas`'s tests check it) and their
-    // worst error from 30° at N = 50 within 3 times (`tests/estimate.rs`). Near the horizontal,
-    // where the end rods spin on, the rule does not choose them.
-    error_model: chain::DESCRIPTOR.error_model,
     colours: ([100, 210, 215], [0, 105, 120]),
     build: |scene, segments, dt| {
         Ok(Box::new(Chain::graded(

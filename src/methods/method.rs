@@ -2,7 +2,6 @@
 //! fills for output, and the [`Descriptor`] in which each method says everything else about
 //! itself once. Also the checks and messages every method shares.
 
-use super::error_model::ErrorModel;
 use crate::error::{ConfigError, Diverged};
 use crate::model::{Energy, Scene, SupportNow};
 
@@ -281,10 +280,6 @@ pub struct Descriptor {
     /// The order of accuracy in h the method is built to have (1 for a first-order scheme):
     /// what Richardson's extrapolation and the live error estimate divide by 2^p − 1 with.
     pub order_in_h: u32,
-    /// The largest tip error up to t = 3 ≈ C h^p, with its measured safety factor: fitted by
-    /// `rope study --estimate-check` over the releases at 0°, 30°, 60°, 90° and modes 1 and 2
-    /// (`assets/estimate-check/`).
-    pub error_model: ErrorModel,
     /// Chart colours: its coarsest and its finest runs, shades between.
     pub colours: ([u8; 3], [u8; 3]),
     /// Builds the method at rest in a scene, validating what it needs.

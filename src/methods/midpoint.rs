@@ -45,7 +45,6 @@
 //! (counted); past [`MIN_STEP_FRACTION`] of k_max the run has diverged.
 
 use super::constraint_matrix::ConstraintMatrix;
-use super::error_model::ErrorModel;
 use super::joint_forces::ForceSolver;
 use super::method::{self, Descriptor, Method, Observation, StepStatistics};
 use crate::error::{ConfigError, Diverged};
@@ -114,11 +113,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     // observer's joint-force solve (96).
     bytes_per_segment: 64 + 56 + 176 + 112 + 24 + 96,
     order_in_h: 2,
-    error_model: ErrorModel {
-        constant: 0.461,
-        order: 1.00,
-        safety: 1.08,
-    },
     colours: ([200, 170, 240], [90, 40, 160]),
     build: |scene, segments, dt| Ok(Box::new(Midpoint::new(scene, segments, dt)?)),
     plannable: |_, _| true,

@@ -10,18 +10,16 @@
 //!   energy kept exactly whatever the steps, which follow the motion;
 //! * [`registry`]: the methods a run can choose by name ([`MethodKind`]), each mapped to its
 //!   descriptor, and the report's own setting;
-//! * [`error_model`]: how accurate a method is at N segments, the law C hᵖ each descriptor
-//!   carries (the planning layer, `crate::plan`, chooses runs with it);
 //! * [`tridiagonal`]: the bare Thomas solve the seed scheme's step is measured against.
 //!
 //! Adding a method: one file here that implements [`Method`] and defines its `DESCRIPTOR`,
-//! plus its variant in [`MethodKind`] and its line in [`MethodKind::descriptor`]. Files here
+//! plus its variant in [`MethodKind`] and its line in [`MethodKind::descriptor`] (and, for
+//! `--tolerance` to choose it, its error law in `crate::plan::error_model::law`). Files here
 //! import what they use from the file that defines it, never through this one, so that no
 //! two of them import each other.
 
 pub mod chain;
 pub(crate) mod constraint_matrix;
-pub mod error_model;
 pub mod graded;
 pub(crate) mod joint_forces;
 pub mod method;

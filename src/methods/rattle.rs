@@ -39,7 +39,6 @@
 //! fails as a divergence with its reason.
 
 use super::constraint_matrix::ConstraintMatrix;
-use super::error_model::ErrorModel;
 use super::joint_forces::ForceSolver;
 use super::method::{self, Descriptor, Method, Observation};
 use crate::error::{ConfigError, Diverged};
@@ -87,11 +86,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     // solve, the rates.
     bytes_per_segment: 2 * 64 + 24 + 112 + 2 * 16 + 96 + 8,
     order_in_h: 2,
-    error_model: ErrorModel {
-        constant: 0.459,
-        order: 1.00,
-        safety: 1.07,
-    },
     colours: ([140, 220, 140], [10, 110, 40]),
     build: |scene, segments, dt| Ok(Box::new(Rattle::new(scene, segments, dt)?)),
     plannable: |_, _| true,

@@ -6,7 +6,6 @@
 //! Thomas sweep; (ii) the interior update (8), fused with the back-substitution so that the
 //! step reads the arrays twice; (iii) the support condition (11); (iv) the free end (12).
 
-use super::error_model::ErrorModel;
 use super::method::{self, BlowUp, Descriptor, Method, Observation};
 use crate::error::{ConfigError, Diverged};
 use crate::model::Scene;
@@ -64,11 +63,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     // φ at three times, the tension, and the sweep's two scratch vectors.
     bytes_per_segment: 6 * 8,
     order_in_h: 1,
-    error_model: ErrorModel {
-        constant: 1.985,
-        order: 0.81,
-        safety: 1.03,
-    },
     colours: ([250, 170, 60], [150, 30, 0]),
     build: |scene, segments, dt| Ok(Box::new(Seed::new(scene, segments, dt)?)),
     plannable: |_, _| true,

@@ -11,12 +11,13 @@
 //! known so far; the climb also stops where the next pilot would take the pilots' cost past
 //! that run's: a scene that needs few segments pays for little more than one cheap run twice.
 
-use super::tolerance::{self, Choice, Committed, Source};
-use crate::error::{ConfigError, Diverged};
+use super::choice::{self, Choice};
+use super::committed::Committed;
+use super::error_model::ErrorModel;
+use crate::error::Diverged;
 use crate::methods::MethodKind;
-use crate::methods::error_model::ErrorModel;
-use crate::model::{Scene, fold};
-use crate::run::cost::{self, Cost};
+use crate::model::Scene;
+use crate::run::cost::Cost;
 use crate::run::simulate::{self, Options};
 use std::time::Instant;
 
@@ -170,7 +171,7 @@ pub enum Basis {
     /// The committed model alone: no pilot was worth its cost, or none measured anything.
     Committed,
     /// The committed model, from the release atlas of the chosen rods
-    /// ([`tolerance::from_atlas`]): their error measured at this angle, or from its neighbours,
+    /// ([`from_atlas`](super::committed::from_atlas)): their error measured at this angle, or from its neighbours,
     /// or the envelope of every angle's, up to large N, alone or tighter than the pilots' own.
     Atlas,
 }
@@ -227,21 +228,21 @@ impl Pilots {
 
 /// The best choice known so far during the climb, and what it would cost.
 #[derive(Clone, Copy)]
-struct Best {
-    choice: Choice,
+pub(super) struct Best {
+    pub(super) choice: Choice,
     seconds: f64,
-    basis: Basis,
+    pub(super) basis: Basis,
 }
 
 /// The ladder: each level for every method not ruled out, cheapest first, until a pilot holds
 /// `eps` by its own [`Pilot::bound`] (and its run `fits`), or the next pilot would take the
 /// pilots' predicted CPU past what the best choice known so far would cost (measuring must
 /// cost less than it can save). That best is at first the committed models' choice
-/// ([`tolerance::choose_committed`]), then after each pilot the cheapest that the pilots' own
+/// ([`choice::from_committed`]), then after each pilot the cheapest that the pilots' own
 /// models allow, where cheaper: a scene whose pilots show it cheap stops measuring early.
 /// `seconds` is a run's predicted CPU, shadow included; `before_flying` is told of the first
 /// pilot just before it flies (not at all where none does).
-fn climb(
+pub(super) fn climb(
     eps: f64,
     scene: &Scene,
     duration: f64,
@@ -251,9 +252,7 @@ fn climb(
     before_flying: impl FnOnce(FirstPilot),
 ) -> (Vec<Pilot>, Option<Best>) {
     let mut before_flying = Some(before_flying);
-    let mut pilots: Vec<Pilot> = tolerance::startable(scene, duration)
-        .map(Pilot::new)
-        .collect();
+    let mut pilots: Vec<Pilot> = choice::startable(scene, duration).map(Pilot::new).collect();
     let levels = levels(scene);
     pilots.sort_by(|a, b| {
         let cost = |p: &Pilot| level_seconds(p.method, levels[0], duration);
@@ -266,7 +265,7 @@ fn climb(
             .find(|p| p.method.descriptor().discretization == discretization)
             .map(|p| p.method);
     }
-    let committed = tolerance::choose_committed(eps, duration, scene, models, fits);
+    let committed = choice::from_committed(eps, duration, scene, models, fits);
     let by_committed = committed.map(|choice| Best {
         choice,
         seconds: seconds(&choice),
@@ -301,7 +300,7 @@ fn climb(
                 let held = flown == segments && bound <= eps && pilot.diverged.is_none();
                 if held && fits(pilot.method, flown, dt) {
                     pilot.held_at = Some(flown);
-                    let choice = tolerance::at(pilot.method, flown, bound, duration);
+                    let choice = choice::at(pilot.method, flown, bound, duration);
                     let seconds = seconds(&choice);
                     return (
                         pilots,
@@ -349,7 +348,7 @@ fn cheapest_modelled(
         .filter_map(|pilot| {
             let method = pilot.method;
             let (model, basis) = ruling_model(pilot, eps, models)?;
-            let choice = tolerance::by_model(method, &model, eps, fewest, duration);
+            let choice = choice::by_model(method, &model, eps, fewest, duration);
             if !fits(method, choice.segments, choice.dt) {
                 return None;
             }
@@ -411,27 +410,6 @@ pub fn ruling_model(pilot: &Pilot, eps: f64, models: &Committed) -> Option<(Erro
     })
 }
 
-/// Frames per time unit a choice's cost counts, whatever the run will log: the frames cost
-/// little beside the steps, and a choice that followed them would change with `--log-rate`
-/// (from 30° at 1e-3 it did, between 60 and 600 frames a unit). Where the run goes, or how
-/// often it is drawn, never changes what it models.
-pub const COSTED_LOG_RATE: f64 = 60.0;
-
-/// What `--tolerance EPS` chooses for `scene`, for a run of `duration` within `memory` bytes
-/// (its frames costed at [`COSTED_LOG_RATE`], whatever it logs): the cheapest choice whose run fits in
-/// [`tolerance::MAX_SECONDS`] of CPU and that memory: a pilot run that already holds EPS, or
-/// the cheapest the scene's own error models allow (measured by the pilots' ladder), or the
-/// committed models' choice where the pilots would cost more than it (or found nothing).
-/// Returns the pilots flown.
-pub fn choose(
-    eps: f64,
-    scene: &Scene,
-    duration: f64,
-    memory: u64,
-) -> Result<(Choice, Pilots), ConfigError> {
-    choose_telling(eps, scene, duration, memory, |_| {})
-}
-
 /// The first pilot a choice flies, before it flies: the cheapest method at the first level,
 /// and its predicted CPU seconds (shadow included, as the climb counts them).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -441,95 +419,4 @@ pub struct FirstPilot {
     /// The simulated time it runs: the run's duration, at most [`WINDOW`].
     pub duration: f64,
     pub seconds: f64,
-}
-
-/// As [`choose`], telling `before_flying` of the first pilot just before it flies, once the
-/// request has passed every refusal (not at all where no pilot flies): a run says it where the
-/// pilots take a while (a
-/// narrow fold's pilots start at sixteen rods across its gap: from a gap of 0.005, N = 3 200,
-/// 12 s of CPU to t = 1).
-pub fn choose_telling(
-    eps: f64,
-    scene: &Scene,
-    duration: f64,
-    memory: u64,
-    before_flying: impl FnOnce(FirstPilot),
-) -> Result<(Choice, Pilots), ConfigError> {
-    scene.validate()?;
-    if !(eps.is_finite() && eps > 0.0) {
-        return Err(ConfigError::Tolerance(eps));
-    }
-    if duration.is_infinite() {
-        return Err(ConfigError::ToleranceEndless(eps));
-    }
-    let duration = duration.max(0.0);
-    // The chosen run carries the live estimate (--tolerance needs it): its shadow counts.
-    let cost_of = |method, segments, dt| {
-        Cost::of_estimated_run(method, segments, dt, duration, COSTED_LOG_RATE, true)
-    };
-    let fits = |method, segments, dt| {
-        let cost = cost_of(method, segments, dt);
-        cost.bytes <= memory && cost.seconds <= tolerance::MAX_SECONDS
-    };
-    let limit = || {
-        format!(
-            "{} of CPU and {} of memory",
-            cost::seconds_text(tolerance::MAX_SECONDS),
-            cost::bytes_text(memory)
-        )
-    };
-    // A fold is served to its snap, by pilots from N = 16 / gap: past the snap, or with a gap
-    // so narrow that the first pilot cannot fit, it is refused before one flies.
-    if let Scene::Fold { gap } = *scene {
-        let snap = fold::snap_time(gap);
-        if duration > snap {
-            return Err(ConfigError::ToleranceFoldPastSnap {
-                tolerance: eps,
-                duration,
-                gap,
-                snap,
-                speed: fold::speed(fold::arm_runs_out(gap)),
-            });
-        }
-        let first = levels(scene)[0];
-        let flies = |m: MethodKind| fits(m, first, m.tolerance_dt(first));
-        if !tolerance::startable(scene, duration).any(flies) {
-            return Err(ConfigError::ToleranceFoldPilots {
-                gap,
-                segments: FOLD_RODS_ACROSS_GAP / gap,
-                limit: limit(),
-            });
-        }
-    }
-    // The committed models, looked up once: the choice and the pilots' climb read them.
-    let models = Committed::look_up(scene, duration, eps);
-    let seconds = |c: &Choice| cost_of(c.method, c.segments, c.dt).seconds;
-    let (flown, best) = climb(eps, scene, duration, &models, seconds, fits, before_flying);
-    if let Some(best) = best {
-        let from_atlas = models.source(best.choice.method) == Source::Atlas;
-        let basis = match best.basis {
-            Basis::Committed | Basis::CommittedTighter | Basis::CommittedOverPilots
-                if from_atlas =>
-            {
-                Basis::Atlas
-            }
-            basis => basis,
-        };
-        return Ok((best.choice, Pilots { flown, basis }));
-    }
-    let best =
-        tolerance::tightest(duration, scene, fits).ok_or(ConfigError::ToleranceNoMethod(eps))?;
-    let cost = cost_of(best.method, best.segments, best.dt);
-    Err(ConfigError::ToleranceUnreachable {
-        tolerance: eps,
-        limit: limit(),
-        tightest: best.predicted_error,
-        method: best.method.name(),
-        segments: best.segments,
-        cost: format!(
-            "{} of CPU, {}",
-            cost::seconds_text(cost.seconds),
-            cost::bytes_text(cost.bytes)
-        ),
-    })
 }

@@ -1,8 +1,9 @@
 //! The runs a request asks for, one [`Planned`] per scene: each method's validated
 //! [`RunPlan`], and with `--tolerance` what the rule chose and what it rests on.
 
-use super::pilot::{self, FirstPilot, Pilots};
-use super::tolerance::Choice;
+use super::choice::Choice;
+use super::pilot::{FirstPilot, Pilots};
+use super::tolerance;
 use crate::error::ConfigError;
 use crate::methods::MethodKind;
 use crate::model::Scene;
@@ -54,7 +55,7 @@ impl Planned {
 }
 
 /// Validates `request` for one scene; with `--tolerance`, also says what the rule chose
-/// (telling `before_pilots` of its first pilot before one flies: [`pilot::choose_telling`]);
+/// (telling `before_pilots` of its first pilot before one flies: [`tolerance::choose_telling`]);
 /// with a list of methods, validates each (naming the one that cannot run).
 pub fn plan_scene(
     request: &RunRequest,
@@ -83,7 +84,7 @@ pub fn plan_scene(
             // frames, so that where and how often it is drawn changes nothing it models.
             let memory = request.limits.memory();
             let (choice, pilots) =
-                pilot::choose_telling(eps, &scene, request.duration, memory, before_pilots)?;
+                tolerance::choose_telling(eps, &scene, request.duration, memory, before_pilots)?;
             // A loose tolerance may choose a step longer than the default frame
             // interval: then a frame at every step the estimate's shadow shares, unless
             // --log-rate asked for more (never more than a frame a step: below).

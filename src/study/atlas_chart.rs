@@ -5,6 +5,7 @@
 use super::charts::{Drawn, SANS, legend, render_chart};
 use crate::methods::MethodKind;
 use crate::plan::atlas::Atlas;
+use crate::plan::error_model::law;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
@@ -28,7 +29,7 @@ fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, atlas: &Atlas, rods: 
         .rows()
         .filter(|(_, points)| points.iter().any(|&(_, e)| e > 1e-9))
         .collect();
-    let law = MethodKind::Chain.descriptor().error_model;
+    let law = law(MethodKind::Chain);
     let finest = rows
         .iter()
         .flat_map(|(_, points)| points.iter().map(|&(n, _)| n))

@@ -8,8 +8,8 @@
 pub use super::trajectory::Trajectory;
 use crate::error::Diverged;
 use crate::methods::MethodKind;
-use crate::methods::error_model::ErrorModel;
 use crate::model::Scene;
+use crate::plan::error_model::ErrorModel;
 use crate::run::simulate::{self, Options};
 use rayon::prelude::*;
 

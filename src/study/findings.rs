@@ -5,8 +5,8 @@ use super::charts::measured_boundary;
 use super::grid::{Row, Status, fit};
 use super::reference::Reference;
 use crate::methods::Descriptor;
-use crate::methods::error_model::ErrorModel;
 use crate::methods::{MethodKind, REPORT};
+use crate::plan::error_model::ErrorModel;
 use std::fmt::Write as _;
 
 /// Everything the study concludes, as numbers and as text.

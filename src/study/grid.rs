@@ -2,10 +2,10 @@
 //! stability, energy deviation and CPU cost (errors against the reference come later).
 //! The grid runs in parallel (rayon); each run's cost is its own thread's CPU time.
 
-use crate::methods::error_model::ErrorModel;
 use crate::methods::{MethodKind, Observation};
 use crate::model::Scene;
 use crate::model::geometry::{self, Point};
+use crate::plan::error_model::ErrorModel;
 use crate::run::simulate;
 use rayon::prelude::*;
 use std::ops::ControlFlow;

@@ -13,8 +13,7 @@ use super::trajectory::{Trajectory, frame_times};
 use crate::methods::{MethodKind, whole_division};
 use crate::model::Scene;
 use crate::plan::atlas::ATLAS_ANGLES;
-use crate::plan::pilot;
-use crate::plan::tolerance;
+use crate::plan::{choice, pilot, tolerance};
 use crate::run::simulate::{self, Options};
 use rayon::prelude::*;
 use std::ops::ControlFlow;
@@ -393,7 +392,7 @@ pub fn check(
         // coarser N, but at its default step it may cost less than a coarser one at its
         // (finer) tolerance step.
         let mut grid: Vec<Measured> = Vec::new();
-        for method in tolerance::startable(scene, spec.duration) {
+        for method in choice::startable(scene, spec.duration) {
             let mut cheapest_holding = f64::INFINITY;
             for &n in &spec.grid {
                 let runs = runs_at(method, n);
@@ -422,7 +421,7 @@ pub fn check(
             if grid.iter().any(|r| r.worst <= judged) {
                 break;
             }
-            for method in tolerance::startable(scene, spec.duration) {
+            for method in choice::startable(scene, spec.duration) {
                 grid.extend(runs_at(method, n));
             }
         }
@@ -449,7 +448,7 @@ pub fn check(
                 continue;
             }
             let started = Instant::now();
-            match pilot::choose(eps, scene, spec.duration, u64::MAX) {
+            match tolerance::choose(eps, scene, spec.duration, u64::MAX) {
                 Ok((choice, flown)) => {
                     cell.pilot_seconds = started.elapsed().as_secs_f64();
                     cell.basis = Some(flown.basis);

@@ -5,9 +5,9 @@
 
 pub mod cli;
 
-use rope::methods::error_model::ErrorModel;
 use rope::methods::{Method, MethodKind};
 use rope::model::Scene;
+use rope::plan::error_model::ErrorModel;
 use rope::run::simulate::{self, Frame, Options, Outcome};
 use std::ops::ControlFlow;
 

@@ -1,6 +1,6 @@
 //! The release atlas: the committed error model of a release, per release angle.
 //!
-//! A method's one error law ([`Descriptor::error_model`](crate::methods::Descriptor::error_model)) is
+//! A method's one error law ([`law`](crate::plan::error_model::law)) is
 //! the worst of six scenes up to large N: the horizontal release's whip, whose error constant
 //! stays near 0.45/N. From most other angles the rods' worst tip error to t = 3 is far from
 //! one law: its constant rises and falls with N by up to a factor of 2 (from 30° it falls from
@@ -37,8 +37,8 @@
 //! pilots' figure rules instead.
 
 use crate::methods::MethodKind;
-use crate::methods::error_model::ErrorModel;
 use crate::model::Scene;
+use crate::plan::error_model::ErrorModel;
 use std::sync::OnceLock;
 
 /// The release angles the atlas measures, in degrees below the horizontal.

@@ -112,7 +112,7 @@ fn the_committed_graded_atlas_reads_from_20_degrees_and_the_law_bounds_it() {
         assert!(model.segments_for(1e-4) <= SEGMENTS[SEGMENTS.len() - 1]);
     }
     // The graded rods borrow the chain's one law: it bounds every trusted entry.
-    let law = MethodKind::Graded.descriptor().error_model;
+    let law = crate::plan::error_model::law(MethodKind::Graded);
     for (angle, points) in atlas.rows() {
         for (n, error) in points {
             assert!(error <= law.bound(n), "{angle}° at N = {n}: {error:e}");

@@ -1,6 +1,32 @@
-//! How accurate a method is at N segments: tip error ≈ C h^p, and the least-squares fit of
-//! that law to measured errors (used by `rope study` to fit it, and by the convergence tests
-//! to measure an order).
+//! How accurate a method is at N segments: tip error ≈ C h^p ([`ErrorModel`]), each method's
+//! one committed law ([`law`]), and the least-squares fit of that law to measured errors (used
+//! by `rope study` to fit it, by the pilots to fit the scene's own, and by the convergence
+//! tests to measure an order).
+
+use crate::methods::MethodKind;
+
+/// `method`'s one committed error law: the largest tip error up to t = 3 ≈ C h^p with its
+/// measured safety factor, fitted by `rope study --estimate-check` over the releases at 0°,
+/// 30°, 60°, 90° and modes 1 and 2 (`assets/estimate-check/`). `--tolerance` rests on it
+/// where no atlas serves and the pilots measure nothing better.
+pub fn law(method: MethodKind) -> ErrorModel {
+    let (constant, order, safety) = match method {
+        MethodKind::Seed => (1.985, 0.81, 1.03),
+        MethodKind::Chain => (0.458, 1.00, 1.07),
+        // The chain's one law, not refitted: it bounds every entry of the graded rods' atlas
+        // (20° to 90°, N = 16 to 1131, at most 0.40/N; `plan::atlas`'s tests check it) and
+        // their worst error from 30° at N = 50 within 3 times (`tests/estimate.rs`). Near the
+        // horizontal, where the end rods spin on, the rule does not choose them.
+        MethodKind::Graded => return law(MethodKind::Chain),
+        MethodKind::Rattle => (0.459, 1.00, 1.07),
+        MethodKind::Midpoint => (0.461, 1.00, 1.08),
+    };
+    ErrorModel {
+        constant,
+        order,
+        safety,
+    }
+}
 
 /// Tip error ≈ `constant` · h^`order`, and at most `safety` times that on the errors it was
 /// fitted to.
