@@ -15,6 +15,7 @@ mod args;
 
 use rope::methods::MethodKind;
 use rope::model::{Scene, fold};
+use rope::run::estimate::TipBound;
 use rope::study::tip_reference::{ConvergedTip, TipReference};
 use rope::study::tolerance_check::measure;
 
@@ -44,8 +45,16 @@ fn main() -> anyhow::Result<()> {
         for rods in [2.0, 4.0, 8.0, 16.0, 32.0] {
             let segments = (rods / gap).round() as usize;
             let dt = method.tolerance_dt(segments);
-            let measured = measure(method, &scene, segments, dt, duration, true, &reference)
-                .ok_or_else(|| anyhow::anyhow!("the run at N = {segments} did not finish"))?;
+            let measured = measure(
+                method,
+                &scene,
+                segments,
+                dt,
+                duration,
+                Some(TipBound::FirstOrder),
+                &reference,
+            )
+            .ok_or_else(|| anyhow::anyhow!("the run at N = {segments} did not finish"))?;
             let bound = measured.estimate.unwrap_or(f64::NAN);
             let ratio = below.map_or("–".to_owned(), |b| format!("{:.2}", b / measured.worst));
             println!(

@@ -233,7 +233,7 @@ fn main() -> anyhow::Result<()> {
                     .filter(|&&n| add.map_or(n <= to, |added| n == added))
                     .map(|&n| {
                         let dt = method.tolerance_dt(n);
-                        let worst = measure(method, &scene, n, dt, window, false, reference)
+                        let worst = measure(method, &scene, n, dt, window, None, reference)
                             .map_or(f64::NAN, |m| m.worst);
                         (n, worst)
                     })

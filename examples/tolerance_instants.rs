@@ -12,8 +12,8 @@
 //!
 //! `cargo run --release --example tolerance_instants -- [EPS,EPS…] [SCENE,SCENE…] [DURATION]`:
 //! by default the fourteen runs of issue 61, 20° to 80° at 1e-3 and 1e-4, to t = 3, against
-//! `assets/tolerance-check/references.csv`. A scene is a release angle (`40`), a fold by its
-//! gap (`fold=0.02`) or a shake from its steady state (`shake=2/1e-3`, frequency and
+//! `assets/tolerance-check/references.csv`. A scene is a release angle (`40`), a mode of the
+//! check's (`mode=2`, a tip amplitude of 0.05), a fold by its gap (`fold=0.02`) or a shake from its steady state (`shake=2/1e-3`, frequency and
 //! amplitude). Past t = 3 (where those end), and for a fold or a shake, each scene's reference
 //! is computed as the tolerance check computes one, of the method the rule would choose there
 //! ([`reference_method`]), refined towards an own error of 1e-5 by one doubling at most (runs
@@ -41,7 +41,7 @@ const DURATION_READ: f64 = 3.0;
 /// How many times finer the step of the run the chosen one is held against in the second table.
 const FINER: usize = 6;
 
-/// A scene as the command line names it here: a release angle in degrees (`40`), a fold by its
+/// A scene as the command line names it here: a release angle in degrees (`40`), a mode (`mode=2`), a fold by its
 /// gap (`fold=0.02`), or a shake from its steady state by its frequency and amplitude
 /// (`shake=2/1e-3`).
 fn scene(text: &str) -> anyhow::Result<Scene> {
@@ -55,6 +55,11 @@ fn scene(text: &str) -> anyhow::Result<Scene> {
             angle_deg: number(text)?,
         },
         Some(("fold", gap)) => Scene::Fold { gap: number(gap)? },
+        // The tolerance check's modes: a tip amplitude of 0.05.
+        Some(("mode", n)) => Scene::Mode {
+            number: number(n)? as u32,
+            amplitude: 0.05,
+        },
         Some(("shake", rest)) => {
             let (frequency, amplitude) = rest
                 .split_once('/')
@@ -65,7 +70,9 @@ fn scene(text: &str) -> anyhow::Result<Scene> {
                 start: ShakeStart::Steady,
             }
         }
-        Some(_) => anyhow::bail!("{text:?}: an angle, fold=GAP or shake=FREQUENCY/AMPLITUDE"),
+        Some(_) => {
+            anyhow::bail!("{text:?}: an angle, mode=NUMBER, fold=GAP or shake=FREQUENCY/AMPLITUDE")
+        }
     })
 }
 
@@ -80,8 +87,11 @@ fn main() -> anyhow::Result<()> {
     };
     let duration = args::number(argv.next(), 3.0)?;
     let smallest = tolerances.iter().copied().fold(f64::INFINITY, f64::min);
-    let releases = scenes.iter().all(|s| matches!(s, Scene::Release { .. }));
-    let references: Vec<CheckReference> = if releases && duration <= DURATION_READ {
+    // The committed references are of the check's releases and modes, to t = 3.
+    let committed = scenes
+        .iter()
+        .all(|s| matches!(s, Scene::Release { .. } | Scene::Mode { .. }));
+    let references: Vec<CheckReference> = if committed && duration <= DURATION_READ {
         read_all(&[PathBuf::from(REFERENCES)], &scenes, duration)?
             .into_iter()
             .map(CheckReference::Read)
@@ -108,7 +118,7 @@ fn main() -> anyhow::Result<()> {
             .collect::<anyhow::Result<_>>()?
     };
     println!(
-        "| angle | EPS | choice (from) | worst / EPS at every instant | at the frames ({LOG_RATE} a unit) | live estimate's first-order bound / EPS | at the nominal order | exit | verdict | CPU s, pilots + run |\n|---|---|---|---|---|---|---|---|---|---|"
+        "| angle | EPS | choice (from) | worst / EPS at every instant | at the frames ({LOG_RATE} a unit) | live estimate's bound / EPS | at the nominal order | exit | verdict | CPU s, pilots + run |\n|---|---|---|---|---|---|---|---|---|---|"
     );
     let mut chosen_runs = Vec::new();
     for &eps in &tolerances {
@@ -122,7 +132,9 @@ fn main() -> anyhow::Result<()> {
             let pilot_seconds = started.elapsed().as_secs_f64();
             let (m, n, dt) = (choice.method, choice.segments, choice.dt);
             chosen_runs.push((*scene, eps, m, n, dt));
-            let Some(chosen) = measure(m, scene, n, dt, duration, true, reference) else {
+            let Some(chosen) =
+                measure(m, scene, n, dt, duration, Some(choice.tip_bound), reference)
+            else {
                 println!("| {scene} | {eps:.0e} | {m} N = {n} diverged | | | | | | | |");
                 continue;
             };
@@ -141,8 +153,10 @@ fn main() -> anyhow::Result<()> {
                 cheapest: None,
             };
             let estimate = chosen.estimate.unwrap_or(f64::NAN);
-            // The displayed estimate divides by 2^p − 1 where the bound divides by 2 − 1.
-            let nominal = estimate / (2f64.powi(m.descriptor().order_in_h as i32) - 1.0);
+            // The displayed estimate divides by 2^p − 1 where the first-order bound divides by
+            // 2 − 1 (and a mode's bound at the order its pilots saw, by less).
+            let first_order = estimate / choice.tip_bound.of_first_order(2.0);
+            let nominal = first_order / (2f64.powi(m.descriptor().order_in_h as i32) - 1.0);
             println!(
                 "| {} | {eps:.0e} | {m} N = {n}, k = {dt:.2e} ({}) | {:.2} | {:.2} | {:.2} | {:.2} | {} | {} | {pilot_seconds:.2} + {:.2} |",
                 scene,

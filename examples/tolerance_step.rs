@@ -14,7 +14,7 @@ use rope::study::tolerance_check::measure;
 /// The worst distance of the tip from the reference's over the frames (NaN if the run could
 /// not start or diverged).
 fn worst(method: MethodKind, scene: &Scene, n: usize, dt: f64, reference: &TipReference) -> f64 {
-    measure(method, scene, n, dt, 3.0, false, reference).map_or(f64::NAN, |m| m.worst)
+    measure(method, scene, n, dt, 3.0, None, reference).map_or(f64::NAN, |m| m.worst)
 }
 
 fn main() -> anyhow::Result<()> {

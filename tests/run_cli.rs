@@ -939,6 +939,7 @@ fn tolerance_choice_and_verdict_do_not_depend_on_the_frames() {
         "segments",
         "dt",
         "tolerance_met",
+        "tolerance_bound",
         "tolerance_exceeded_at",
     ];
     for rate in ["10", "600"] {

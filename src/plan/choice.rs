@@ -8,6 +8,7 @@ use super::committed::Committed;
 use super::error_model::{ErrorModel, law};
 use crate::methods::MethodKind;
 use crate::model::Scene;
+use crate::run::estimate::TipBound;
 
 /// Fewest segments the rule chooses: fewer is a pendulum, not a rope.
 const MIN_SEGMENTS: usize = 4;
@@ -26,6 +27,9 @@ pub struct Choice {
     /// methods by (the run's whole cost, frames and the estimate's shadow with it, is
     /// `run::Cost`'s).
     pub predicted_seconds: f64,
+    /// How the run's live estimate is to bound its tip error: at first order, unless the
+    /// pilots measured the scene's own ([`pilot::tip_bound`](super::pilot::tip_bound)).
+    pub tip_bound: TipBound,
 }
 
 /// The cheapest method, N and k whose tip error `committed` (the committed models for this
@@ -172,5 +176,6 @@ fn choice(method: MethodKind, model: &ErrorModel, segments: usize, duration: f64
         dt,
         predicted_error: model.bound(segments),
         predicted_seconds: d.ns_per_segment_step * 1e-9 * segments as f64 * steps,
+        tip_bound: TipBound::FirstOrder,
     }
 }

@@ -8,6 +8,7 @@ use crate::error::ConfigError;
 use crate::methods::MethodKind;
 use crate::model::Scene;
 use crate::run::cost::Limits;
+use crate::run::estimate::TipBound;
 use crate::run::{RunConfig, RunPlan};
 
 /// What `rope run` asks of each scene, its flags resolved (the command line makes it).
@@ -76,6 +77,7 @@ pub fn plan_scene(
         limits: request.limits,
         error_estimate: request.error_estimate,
         tolerance: request.tolerance,
+        tip_bound: TipBound::FirstOrder,
     };
     let (mut config, choice, pilots) = match request.tolerance {
         None => (asked, None, None),
@@ -98,6 +100,7 @@ pub fn plan_scene(
                 segments: choice.segments,
                 dt: Some(choice.dt),
                 log_rate,
+                tip_bound: choice.tip_bound,
                 ..asked
             };
             (chosen, Some(choice), Some(pilots))

@@ -106,7 +106,11 @@ pub fn choose_telling(
             }
             basis => basis,
         };
-        return Ok((best.choice, Pilots { flown, basis }));
+        let choice = Choice {
+            tip_bound: pilot::tip_bound(scene, &flown, best.choice.method),
+            ..best.choice
+        };
+        return Ok((choice, Pilots { flown, basis }));
     }
     let best =
         choice::tightest(duration, scene, fits).ok_or(ConfigError::ToleranceNoMethod(eps))?;

@@ -2,7 +2,7 @@
 //! once checked ([`RunPlan`], validated once, every value resolved).
 
 use super::cost::{self, Cost, Limits};
-use super::estimate::Shadow;
+use super::estimate::{Shadow, TipBound};
 use super::simulate::step_on_frame_grid;
 use crate::error::ConfigError;
 use crate::methods::{Method, MethodKind};
@@ -47,6 +47,10 @@ pub struct RunConfig {
     /// The tip error the run is meant to stay within (`--tolerance`), watched through the
     /// live estimate. Default: none.
     pub tolerance: Option<f64>,
+    /// How the live estimate bounds the tip's error, what a tolerance is watched by.
+    /// Default: at first order, a whip's ([`TipBound::FirstOrder`]); `--tolerance` measures
+    /// the order of a scene with no whip (a mode) with its pilots.
+    pub tip_bound: TipBound,
     /// Bring the time step down onto the grid of [`SHARED_FRAME_GRID`] instants per time unit
     /// ([`step_on_frame_grid`]), and the frames' times onto the same grid, so that the run
     /// shares every frame time with runs of other methods beside it. The step depends on
@@ -68,6 +72,7 @@ impl Default for RunConfig {
             limits: Limits::default(),
             error_estimate: true,
             tolerance: None,
+            tip_bound: TipBound::FirstOrder,
             shared_frames: false,
         }
     }
@@ -88,6 +93,8 @@ pub struct RunPlan {
     pub error_estimate: bool,
     /// The tip error the run is meant to stay within, if one was asked for.
     pub tolerance: Option<f64>,
+    /// How the live estimate bounds the tip's error.
+    pub tip_bound: TipBound,
     /// Side by side, the instants per time unit the frames fall on
     /// ([`SHARED_FRAME_GRID`]); `None` for a run of one method.
     pub frame_grid: Option<f64>,
@@ -170,6 +177,7 @@ impl RunConfig {
             realtime: self.realtime,
             error_estimate,
             tolerance: self.tolerance,
+            tip_bound: self.tip_bound,
             frame_grid,
             cost,
         })
@@ -219,7 +227,13 @@ impl RunPlan {
         if !self.error_estimate {
             return Ok(None);
         }
-        Shadow::new(self.method, &self.scene, self.segments, self.dt)
+        Shadow::new(
+            self.method,
+            &self.scene,
+            self.segments,
+            self.dt,
+            self.tip_bound,
+        )
     }
 
     /// The parameters as a Markdown document, so that a recording explains itself.

@@ -18,6 +18,64 @@ pub const STRIDE: u64 = 2;
 /// How often, in time units, the shadow's energy is checked for a blow-up.
 const ENERGY_CHECK_EVERY: f64 = 1e-3;
 
+/// How the live estimate bounds the tip's error, what `--tolerance` is held to.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TipBound {
+    /// Richardson's estimate at first order, |x_N − x_(N/2)| / (r − 1): the lowest order any
+    /// method shows (a whip's; through the whip, from 20° to 80°, the estimate at the nominal
+    /// order read 0.42 to 1.0 of the true error: `examples/tolerance_instants.rs`,
+    /// `assets/tolerance-instants/`). The default, and a release's, a fold's and a shake's.
+    #[default]
+    FirstOrder,
+    /// Richardson's estimate at an order measured on the scene itself (by `--tolerance`'s
+    /// pilots), times `safety` (at least 1), where that is below the first-order bound: for a scene with
+    /// no whip, whose error keeps the order the pilots saw (a mode's). At first order there
+    /// the bound reads about three times a second-order error, and a run whose truth is a
+    /// third of its tolerance would be flagged.
+    Observed { order: f64, safety: f64 },
+}
+
+impl TipBound {
+    /// What |x_N − x_M| is multiplied by for the bound, with r = N / M.
+    fn factor(self, ratio: f64) -> f64 {
+        let first = 1.0 / (ratio - 1.0);
+        match self {
+            Self::FirstOrder => first,
+            // A safety below 1 would bound less than the estimate: taken as 1.
+            Self::Observed { order, safety } => {
+                first.min(safety.max(1.0) / (ratio.powf(order) - 1.0))
+            }
+        }
+    }
+
+    /// The bound over the first-order bound (at most 1), with r = N / M.
+    pub fn of_first_order(self, ratio: f64) -> f64 {
+        self.factor(ratio) * (ratio - 1.0)
+    }
+
+    /// The bound's name in a sentence ("the tip error's first-order bound").
+    pub fn name(self) -> String {
+        match self {
+            Self::FirstOrder => "first-order bound".to_owned(),
+            Self::Observed { order, safety } => {
+                format!("bound at the order the pilots observed ({order:.2}, ×{safety} safety)")
+            }
+        }
+    }
+
+    /// How far below the bound the truth may be, where the error has the order it assumes or
+    /// a higher one (in a sentence: "the truth may be anywhere above …").
+    pub fn truth_from(self) -> String {
+        match self {
+            Self::FirstOrder => "about a third of the bound".to_owned(),
+            Self::Observed { safety, .. } => {
+                format!("about {:.0} % of the bound", 100.0 / safety.max(1.0))
+            }
+        }
+    }
+}
+
 /// Richardson's estimate of the run's error at one instant, in string lengths.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct ErrorEstimate {
@@ -32,10 +90,7 @@ pub struct ErrorEstimate {
 pub struct TipEstimate {
     /// Richardson's estimate at the method's nominal order.
     pub estimate: f64,
-    /// Richardson's estimate at first order, |x_N − x_(N/2)| / (r − 1): the error where the
-    /// run converges no faster than a whip's first order (through the whip, from 20° to 80°,
-    /// the nominal estimate read 0.42 to 1.0 of the true error: `examples/tolerance_instants.rs`,
-    /// `assets/tolerance-instants/`). What `--tolerance` is watched by.
+    /// The bound the run's [`TipBound`] makes of it: what `--tolerance` is watched by.
     pub bound: f64,
 }
 
@@ -44,8 +99,8 @@ pub struct Shadow {
     method: Box<dyn Method>,
     /// 1 / (r^p − 1), r = N / M, p the method's order in h.
     richardson: f64,
-    /// 1 / (r − 1): Richardson's factor at first order, the lowest any method shows (a whip's).
-    first_order: f64,
+    /// What |x_N − x_M| is multiplied by for the tip's bound ([`TipBound`]).
+    bound_factor: f64,
     /// The shadow's energy after the start-up, to see it blow up.
     energy_reference: f64,
     /// Why the shadow stopped, if it did: the estimates end there.
@@ -69,13 +124,15 @@ impl Shadow {
         Self::segments_of(segments) >= method.descriptor().min_segments
     }
 
-    /// The shadow of a run of `method` in `scene` at `segments` and step `dt`; `None` where
-    /// the run is too coarse to have one ([`Shadow::possible`]).
+    /// The shadow of a run of `method` in `scene` at `segments` and step `dt`, bounding the
+    /// tip's error as `bound` says; `None` where the run is too coarse to have one
+    /// ([`Shadow::possible`]).
     pub fn new(
         method: MethodKind,
         scene: &Scene,
         segments: usize,
         dt: f64,
+        bound: TipBound,
     ) -> Result<Option<Self>, ConfigError> {
         if !Self::possible(method, segments) {
             return Ok(None);
@@ -91,7 +148,7 @@ impl Shadow {
             energy_reference: reference_energy(shadow.as_ref()),
             method: shadow,
             richardson: 1.0 / (ratio.powi(order as i32) - 1.0),
-            first_order: 1.0 / (ratio - 1.0),
+            bound_factor: bound.factor(ratio),
             lost: None,
             energy_checked: f64::NEG_INFINITY,
             nodes: Vec::with_capacity(half + 1),
@@ -144,7 +201,7 @@ impl Shadow {
         let gap = (tip - shadow_tip).norm();
         Some(TipEstimate {
             estimate: gap * self.richardson,
-            bound: gap * self.first_order,
+            bound: gap * self.bound_factor,
         })
     }
 
@@ -195,12 +252,12 @@ mod tests {
     fn a_run_too_coarse_to_halve_has_no_shadow() {
         let scene = Scene::Release { angle_deg: 30.0 };
         assert!(
-            Shadow::new(MethodKind::Seed, &scene, 7, 1e-3)
+            Shadow::new(MethodKind::Seed, &scene, 7, 1e-3, TipBound::FirstOrder)
                 .unwrap()
                 .is_none()
         );
         assert!(
-            Shadow::new(MethodKind::Seed, &scene, 8, 1e-3)
+            Shadow::new(MethodKind::Seed, &scene, 8, 1e-3, TipBound::FirstOrder)
                 .unwrap()
                 .is_some()
         );
@@ -209,7 +266,7 @@ mod tests {
     #[test]
     fn at_the_start_the_run_and_its_shadow_agree() {
         let scene = Scene::Release { angle_deg: 30.0 };
-        let mut shadow = Shadow::new(MethodKind::Chain, &scene, 10, 1e-3)
+        let mut shadow = Shadow::new(MethodKind::Chain, &scene, 10, 1e-3, TipBound::FirstOrder)
             .unwrap()
             .unwrap();
         let mut nodes = Vec::new();

@@ -71,7 +71,7 @@ pub struct Frame {
 pub struct Exceeded {
     pub step: u64,
     pub time: f64,
-    /// The tip's first-order bound there, which passed the tolerance.
+    /// The tip's bound there (the run's `TipBound`), which passed the tolerance.
     pub estimate: f64,
 }
 

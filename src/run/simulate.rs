@@ -2,7 +2,7 @@
 //! hands out frames at a fixed rate of simulated time. Pure: what happens to a frame is the
 //! caller's business (the logger streams it; studies and tests read it).
 
-use super::estimate::{STRIDE, Shadow};
+use super::estimate::{STRIDE, Shadow, TipBound};
 pub use super::frame::{EnergyBase, Exceeded, Frame, Lane, frame};
 pub use super::trust::{ENERGY_BLOWUP, REFERENCE_STEP, TENSION_BLOWUP, reference_energy};
 use crate::error::Diverged;
@@ -46,7 +46,7 @@ pub struct EstimateOutcome {
     /// [`STRIDE`] steps: at every instant, whatever the frames), and when.
     pub max_tip: f64,
     pub max_tip_time: f64,
-    /// The largest first-order bound of the tip's error there
+    /// The largest bound of the tip's error there (the run's [`TipBound`])
     /// ([`TipEstimate::bound`](super::estimate::TipEstimate::bound)): what a tolerance is held
     /// to.
     pub max_tip_bound: f64,
@@ -149,24 +149,25 @@ pub struct Shadowed {
     pub lost: Option<Diverged>,
     /// The largest live tip estimate at any step the run shares with its shadow.
     pub max_tip: Option<f64>,
-    /// The largest first-order bound there: what a tolerance is held to.
+    /// The largest bound there (as `bound` says): what a tolerance is held to.
     pub max_tip_bound: Option<f64>,
 }
 
-/// `method` from `scene` at N = `segments` and step `dt`, with its shadow at N/2, to
-/// `options.duration`: the run the study's estimate check and the tolerance's pilots both
-/// make. `on_frame` sees every frame, its estimate in it.
+/// `method` from `scene` at N = `segments` and step `dt`, with its shadow at N/2 bounding the
+/// tip's error as `bound` says, to `options.duration`: the run the study's checks and the
+/// tolerance's pilots make. `on_frame` sees every frame, its estimate in it.
 pub fn run_shadowed(
     method: MethodKind,
     scene: &Scene,
     segments: usize,
     dt: f64,
+    bound: TipBound,
     options: &Options,
     mut on_frame: impl FnMut(&Frame),
 ) -> Shadowed {
     let built = method
         .build(scene, segments, dt)
-        .and_then(|m| Ok((m, Shadow::new(method, scene, segments, dt)?)));
+        .and_then(|m| Ok((m, Shadow::new(method, scene, segments, dt, bound)?)));
     let (mut run, mut shadow) = match built {
         Ok((run, Some(shadow))) => (run, shadow),
         Ok((_, None)) => {

@@ -2,7 +2,7 @@
 //! people.
 
 use super::config::RunPlan;
-use super::estimate::Shadow;
+use super::estimate::{Shadow, TipBound};
 use super::probe::{FoldFall, Probes};
 use super::shake_figures::{ShakeFigures, SweepPoint};
 use super::simulate::{EstimateOutcome, Outcome, REFERENCE_STEP};
@@ -156,12 +156,16 @@ pub struct Summary {
     pub error_estimate: Option<EstimateOutcome>,
     /// The tip error `--tolerance` asked for.
     pub tolerance: Option<f64>,
-    /// Whether the live tip estimate's first-order bound stayed within the tolerance at every
+    /// Whether the live tip estimate's bound ([`Summary::tolerance_bound`]) stayed within the tolerance at every
     /// step the run shares with its shadow: true where the tolerance held (the bound errs on
     /// the safe side), false where it may not have (a run whose true error is above half the
     /// tolerance may be false though it held); absent without a tolerance, or where the
     /// estimate was lost before the end (`error_estimate.lost`).
     pub tolerance_met: Option<bool>,
+    /// How the live estimate bounded the tip's error for the tolerance: at first order (a
+    /// whip's), or, for a mode, at the order `--tolerance`'s pilots observed, times a safety
+    /// factor; absent without a tolerance.
+    pub tolerance_bound: Option<TipBound>,
     /// When the tip estimate first passed the tolerance.
     pub tolerance_exceeded_at: Option<f64>,
     /// `[t, x, y]` of the tip at every logged frame.
@@ -271,6 +275,7 @@ impl Summary {
             error_estimate: outcome.estimate.clone(),
             tolerance: plan.tolerance,
             tolerance_met: tolerance_met(plan, outcome),
+            tolerance_bound: plan.tolerance.map(|_| plan.tip_bound),
             tolerance_exceeded_at: outcome.tolerance_exceeded_at,
             tip_samples: samples,
             period,
@@ -388,9 +393,14 @@ impl Summary {
         }
         if let Some(eps) = self.tolerance {
             text += &match (self.tolerance_met, self.tolerance_exceeded_at) {
-                (_, Some(t)) => format!(
-                    "  tolerance {eps:.1e}: NOT confirmed, the tip error's first-order bound passed it at t = {t:.4} (the truth may be anywhere above about a third of the bound)\n"
-                ),
+                (_, Some(t)) => {
+                    let bound = self.tolerance_bound.unwrap_or_default();
+                    format!(
+                        "  tolerance {eps:.1e}: NOT confirmed, the tip error's {} passed it at t = {t:.4} (the truth may be anywhere above {})\n",
+                        bound.name(),
+                        bound.truth_from()
+                    )
+                }
                 (Some(true), None) => {
                     format!(
                         "  tolerance {eps:.1e}: met (by the estimate, at every step the run shares with its shadow)\n"

@@ -514,8 +514,9 @@ pub fn tolerance_exceeded(plan: &RunPlan, passed: Exceeded) -> Notice {
     Notice::new(
         Topic::ToleranceExceeded,
         format!(
-            "rope: at t = {:.4} the tip error's first-order bound {:.1e} passed the tolerance {:.1e} (N = {}): the run may miss it; it goes on; its summary says tolerance_met: false, and it exits with status 4",
+            "rope: at t = {:.4} the tip error's {} {:.1e} passed the tolerance {:.1e} (N = {}): the run may miss it; it goes on; its summary says tolerance_met: false, and it exits with status 4",
             passed.time,
+            plan.tip_bound.name(),
             passed.estimate,
             plan.tolerance.unwrap_or(f64::NAN),
             plan.segments

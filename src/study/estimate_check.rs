@@ -10,6 +10,7 @@ use crate::error::Diverged;
 use crate::methods::MethodKind;
 use crate::model::Scene;
 use crate::plan::error_model::ErrorModel;
+use crate::run::estimate::TipBound;
 use crate::run::simulate::{self, Options};
 use rayon::prelude::*;
 
@@ -151,15 +152,23 @@ pub fn run_cell(
         frame_grid: None,
     };
     let samples = &mut cell.samples;
-    let run = simulate::run_shadowed(method, &scene, segments, dt, &options, |frame| {
-        if let Some(e) = frame.error_estimate {
-            samples.push(Sample {
-                time: frame.time,
-                estimate: e.tip,
-                truth: (frame.tip() - reference.at(frame.time)).norm(),
-            });
-        }
-    });
+    let run = simulate::run_shadowed(
+        method,
+        &scene,
+        segments,
+        dt,
+        TipBound::FirstOrder,
+        &options,
+        |frame| {
+            if let Some(e) = frame.error_estimate {
+                samples.push(Sample {
+                    time: frame.time,
+                    estimate: e.tip,
+                    truth: (frame.tip() - reference.at(frame.time)).norm(),
+                });
+            }
+        },
+    );
     cell.refused = run.refused;
     cell.diverged = run.diverged;
     cell.lost = run.lost;

@@ -14,6 +14,7 @@ use crate::methods::{MethodKind, whole_division};
 use crate::model::Scene;
 use crate::plan::atlas::ATLAS_ANGLES;
 use crate::plan::{choice, pilot, tolerance};
+use crate::run::estimate::TipBound;
 use crate::run::simulate::{self, Options};
 use rayon::prelude::*;
 use std::ops::ControlFlow;
@@ -143,7 +144,8 @@ pub struct Measured {
     /// frames: at every row of a references file (1/[`JUDGE_RATE`] of a time unit), or at
     /// every step of the run against a computed reference ([`measure`]).
     pub worst: f64,
-    /// For a run with its shadow: the largest first-order bound of its live tip estimate, at
+    /// For a run with its shadow: the largest bound its live tip estimate makes (its
+    /// [`TipBound`]), at
     /// every step the two share (what the run's verdict reads).
     pub estimate: Option<f64>,
     /// Wall seconds of one thread.
@@ -223,8 +225,8 @@ impl EstimateVerdict {
     }
 }
 
-/// Runs `method` at N = `segments` and step `dt` from `scene`, its shadow with it if
-/// `shadowed`, and measures it against `reference` at every instant: at every one of its own
+/// Runs `method` at N = `segments` and step `dt` from `scene`, its shadow with it bounding
+/// the tip's error as `shadow` says if there is one, and measures it against `reference` at every instant: at every one of its own
 /// steps, or, against a reference known only at its rows ([`ConvergedTip::rows_only`], every
 /// 1/[`JUDGE_RATE`]), at every row, the run kept at [`judging_step`] (a cubic through the
 /// run's own steps misses a whip's tip by up to 2.9e-4 from 20°, the graded rods at N = 370,
@@ -237,7 +239,7 @@ pub fn measure(
     segments: usize,
     dt: f64,
     duration: f64,
-    shadowed: bool,
+    shadow: Option<TipBound>,
     reference: &impl ConvergedTip,
 ) -> Option<Measured> {
     let options = Options {
@@ -246,8 +248,8 @@ pub fn measure(
         frame_grid: None,
     };
     let started = Instant::now();
-    let (stopped, estimate) = if shadowed {
-        let run = simulate::run_shadowed(method, scene, segments, dt, &options, |_| {});
+    let (stopped, estimate) = if let Some(bound) = shadow {
+        let run = simulate::run_shadowed(method, scene, segments, dt, bound, &options, |_| {});
         (
             run.refused.is_some() || run.diverged.is_some(),
             run.max_tip_bound,
@@ -381,7 +383,7 @@ pub fn check(
             grid_steps(method, n)
                 .into_iter()
                 .filter_map(|dt| {
-                    let run = measure(method, scene, n, dt, spec.duration, false, reference);
+                    let run = measure(method, scene, n, dt, spec.duration, None, reference);
                     tick();
                     run
                 })
@@ -453,7 +455,8 @@ pub fn check(
                     cell.pilot_seconds = started.elapsed().as_secs_f64();
                     cell.basis = Some(flown.basis);
                     let (m, n, dt) = (choice.method, choice.segments, choice.dt);
-                    cell.chosen = measure(m, scene, n, dt, spec.duration, true, reference);
+                    let bound = Some(choice.tip_bound);
+                    cell.chosen = measure(m, scene, n, dt, spec.duration, bound, reference);
                 }
                 Err(err) => cell.skipped = Some(err.to_string()),
             }
@@ -511,7 +514,7 @@ pub fn markdown(spec: &CheckSpec, checked: &Checked, command: &str) -> String {
             r.own_error_over(spec.duration, REFERENCE_RATE)
         );
     }
-    text += "\n## Choices\n\n| scene | EPS | chosen (from) | true worst error | held | live estimate's first-order bound at worst | verdict | CPU s (pilots + run) | grid's cheapest holding EPS | its worst error | its CPU s | ratio | notes |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    text += "\n## Choices\n\n| scene | EPS | chosen (from) | true worst error | held | live estimate's bound at worst | verdict | CPU s (pilots + run) | grid's cheapest holding EPS | its worst error | its CPU s | ratio | notes |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     let run = |m: &Measured| format!("{} N = {}, k = {:.1e}", m.method, m.segments, m.dt);
     for c in &checked.cells {
         let chosen = c.chosen.as_ref();

@@ -19,7 +19,7 @@ struct Row<'a> {
     /// The chosen run's largest tip error at every instant.
     worst: Option<f64>,
     held: Option<bool>,
-    /// The largest first-order bound of its live estimate, at every step it shares with its
+    /// The largest bound of its live estimate (at first order, or a mode's at its pilots' order), at every step it shares with its
     /// shadow: what its exit status reads.
     estimate_bound: Option<f64>,
     verdict: Option<&'a str>,
