@@ -59,9 +59,15 @@ const COURANT: f64 = 0.4;
 /// `--dt` tightens it in proportion, so that a finer step refines the whip too.
 pub const ROTATION: f64 = 0.05;
 
-/// Newton stops when its last correction moved no angle by more than this (radians) and no
-/// joint by more than this (string lengths): quadratic convergence leaves about its square.
-const CORRECTION: f64 = 1e-10;
+/// Newton stops when what its last correction leaves moves no angle by more than this
+/// (radians) and no joint by more than this (string lengths): about the correction times its
+/// contraction from the one before (the simplified Newton converges at least linearly), or,
+/// at the first iteration, the correction itself. Before, it stopped at a correction of 1e-10
+/// itself, one iteration later: from 30° at N = 1 000 to t = 3 the tip moved by at most
+/// 4.4e-14 at 1 000 frames a unit, with 2.4 solves a step where there had been 3.0; the bare
+/// scheme's energy from the horizontal, over 28 000 random steps, strays by 6.6e-14 where it
+/// strayed by 2.0e-14 (`tests/midpoint_physics.rs`).
+const CORRECTION: f64 = 1e-11;
 /// Newton refreshes its Jacobian until its correction falls below this; after, it keeps it.
 const REFRESH: f64 = 1e-6;
 /// Newton iterations before a step counts as failed.
@@ -502,12 +508,19 @@ impl Midpoint {
         for _ in 0..MAX_ITERATIONS {
             // Simplified Newton (the Jacobian of the first iteration) once close.
             self.forward(dt, correction > REFRESH);
+            let before = correction;
             correction = self.backward();
             if !correction.is_finite() {
                 break;
             }
             self.statistics.solves += 1;
-            if correction <= CORRECTION {
+            // What this correction leaves: about ρ c, ρ = c / c_before its contraction (at
+            // the first iteration nothing is known of ρ).
+            let left = match before.is_finite() {
+                true => correction * (correction / before).min(1.0),
+                false => correction,
+            };
+            if left <= CORRECTION {
                 converged = true;
                 break;
             }
