@@ -6,17 +6,14 @@
 //! method whose error in k has the same order as in h (the report's scheme, `rattle`) scales
 //! as a whole; for the RK4 chain the error in k is negligible.
 
-use super::trust::{ENERGY_BLOWUP, reference_energy};
+use super::shadow_steps::ShadowSteps;
 use crate::error::{ConfigError, Diverged};
-use crate::methods::{Method, MethodKind};
+use crate::methods::MethodKind;
 use crate::model::Scene;
 use crate::model::geometry::{self, Point};
 
 /// Main steps per shadow step: the shadow's step is this many times the run's.
 pub const STRIDE: u64 = 2;
-
-/// How often, in time units, the shadow's energy is checked for a blow-up.
-const ENERGY_CHECK_EVERY: f64 = 1e-3;
 
 /// How the live estimate bounds the tip's error, what `--tolerance` is held to.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
@@ -96,17 +93,14 @@ pub struct TipEstimate {
 
 /// The run at half its segments, kept in step with it.
 pub struct Shadow {
-    method: Box<dyn Method>,
+    /// The shadow's states, stepped on the run's thread or ahead on its own.
+    steps: ShadowSteps,
     /// 1 / (r^p − 1), r = N / M, p the method's order in h.
     richardson: f64,
     /// What |x_N − x_M| is multiplied by for the tip's bound ([`TipBound`]).
     bound_factor: f64,
-    /// The shadow's energy after the start-up, to see it blow up.
-    energy_reference: f64,
     /// Why the shadow stopped, if it did: the estimates end there.
     lost: Option<Diverged>,
-    /// When the shadow's energy was last checked.
-    energy_checked: f64,
     nodes: Vec<Point>,
     /// The shadow's nodes' arc lengths (fixed: its rods keep their lengths).
     edges: Vec<f64>,
@@ -145,12 +139,10 @@ impl Shadow {
         let mut edges = Vec::with_capacity(half + 1);
         geometry::edges(half, shadow.lengths(), &mut edges);
         Ok(Some(Self {
-            energy_reference: reference_energy(shadow.as_ref()),
-            method: shadow,
+            steps: ShadowSteps::here(shadow),
             richardson: 1.0 / (ratio.powi(order as i32) - 1.0),
             bound_factor: bound.factor(ratio),
             lost: None,
-            energy_checked: f64::NEG_INFINITY,
             nodes: Vec::with_capacity(half + 1),
             edges,
         }))
@@ -174,9 +166,8 @@ impl Shadow {
         if !self.advance_to(step) {
             return None;
         }
-        geometry::nodes_of(self.method.angles(), self.method.lengths(), &mut self.nodes);
         // In the room, as the run's nodes are.
-        crate::model::support::into_the_room(self.method.support(), &mut self.nodes);
+        self.steps.nodes(&mut self.nodes);
         let tip = nodes.last().copied().unwrap_or_else(Point::origin);
         let shadow_tip = self.nodes.last().copied().unwrap_or_else(Point::origin);
         let shape = geometry::largest_distance_at(&self.nodes, &self.edges, nodes, edges);
@@ -193,11 +184,7 @@ impl Shadow {
         if !self.advance_to(step) {
             return None;
         }
-        let shadow_tip = crate::model::support::tip_in_the_room(
-            self.method.support(),
-            self.method.angles(),
-            self.method.lengths(),
-        );
+        let shadow_tip = self.steps.tip();
         let gap = (tip - shadow_tip).norm();
         Some(TipEstimate {
             estimate: gap * self.richardson,
@@ -212,35 +199,28 @@ impl Shadow {
         if self.lost.is_some() || !step.is_multiple_of(STRIDE) {
             return false;
         }
-        let target = step / STRIDE;
-        if self.method.steps() >= target {
-            return true;
-        }
-        while self.method.steps() < target {
-            if let Err(d) = self.method.step() {
-                self.lost = Some(d);
-                return false;
+        match self.steps.advance_to(step / STRIDE) {
+            Ok(()) => true,
+            Err(why) => {
+                self.lost = Some(why);
+                false
             }
         }
-        // The energy about every 1e-3 time units, as the run's own is watched: cheap against
-        // the steps between.
-        if self.method.time() < self.energy_checked + ENERGY_CHECK_EVERY {
-            return true;
+    }
+
+    /// The same shadow, stepped ahead of the run on a core of its own (the same states, bit
+    /// for bit: the shadow never reads the run).
+    pub fn ahead(self) -> Self {
+        Self {
+            steps: self.steps.ahead(),
+            ..self
         }
-        self.energy_checked = self.method.time();
-        let energy = self.method.energy().total();
-        if !energy.is_finite() || (energy - self.energy_reference).abs() > ENERGY_BLOWUP {
-            self.lost = Some(Diverged {
-                step: self.method.steps(),
-                time: self.method.time(),
-                reason: format!(
-                    "the energy of the shadow at N = {} grew without bound: E = {energy:.3e}",
-                    self.method.segments()
-                ),
-            });
-            return false;
-        }
-        true
+    }
+
+    /// CPU seconds a thread of its own has spent on the shadow: none where it is stepped on
+    /// the run's thread, which counts them.
+    pub fn own_thread_seconds(&self) -> f64 {
+        self.steps.own_thread_seconds()
     }
 }
 
@@ -274,5 +254,35 @@ mod tests {
         let e = shadow.estimate(0, &nodes, None).unwrap();
         assert!(e.tip < 1e-15 && e.shape < 1e-15);
         assert!(shadow.estimate(1, &nodes, None).is_none());
+    }
+
+    #[test]
+    fn a_shadow_stepped_ahead_on_its_own_thread_estimates_the_same_bit_for_bit() {
+        // The run's tip and nodes stand still at the start; the shadow swings away from them,
+        // and both shadows must say the same of it at every shared step, through a whip.
+        let scene = Scene::Release { angle_deg: 0.0 };
+        let make = || {
+            Shadow::new(MethodKind::Midpoint, &scene, 40, 2e-3, TipBound::FirstOrder)
+                .unwrap()
+                .unwrap()
+        };
+        let (mut here, mut ahead) = (make(), make().ahead());
+        let mut nodes = Vec::new();
+        geometry::nodes(&scene.initial_angles(40), &mut nodes);
+        let tip = *nodes.last().unwrap();
+        for step in (0..1_500).step_by(STRIDE as usize) {
+            let (a, b) = (here.tip_estimate(step, tip), ahead.tip_estimate(step, tip));
+            assert_eq!(a, b, "step {step}");
+            if step % 100 == 0 {
+                let (a, b) = (
+                    here.estimate(step, &nodes, None),
+                    ahead.estimate(step, &nodes, None),
+                );
+                assert_eq!(a, b, "step {step}");
+            }
+        }
+        assert!(here.tip_estimate(1_500, tip).unwrap().estimate > 0.1);
+        assert_eq!(here.own_thread_seconds(), 0.0);
+        assert!(ahead.own_thread_seconds() > 0.0);
     }
 }

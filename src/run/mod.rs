@@ -15,6 +15,7 @@ pub mod pipeline;
 pub mod probe;
 #[cfg(feature = "app")]
 pub mod progress;
+mod shadow_steps;
 pub mod shake_figures;
 pub mod simulate;
 pub mod sink;

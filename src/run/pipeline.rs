@@ -39,7 +39,10 @@ pub fn run<S: FrameSink>(
     progress: &(dyn Fn(&Frame) + Sync),
 ) -> Result<Summary, ConfigError> {
     let mut method = plan.build()?;
-    let mut shadow = plan.shadow()?;
+    let mut shadow = match plan.shadow()? {
+        Some(shadow) if shadow_ahead(plan) => Some(shadow.ahead()),
+        shadow => shadow,
+    };
     let started = Instant::now();
     let (tx, rx) = crossbeam_channel::bounded::<Frame>(CHANNEL_FRAMES);
     // Paced runs show each frame as soon as it is made.
@@ -68,6 +71,9 @@ pub fn run<S: FrameSink>(
         (simulated, delivered)
     });
     let (outcome, tip_samples, busy) = simulated;
+    // A shadow stepped ahead spent its CPU on a thread of its own: the run's all the same.
+    let busy =
+        busy + Duration::from_secs_f64(shadow.as_ref().map_or(0.0, Shadow::own_thread_seconds));
     sink.end_run(outcome.time, outcome.steps);
     let recording_error = delivered.err().map(|err| err.to_string());
     Ok(Summary::new(
@@ -78,6 +84,21 @@ pub fn run<S: FrameSink>(
         started.elapsed(),
         recording_error,
     ))
+}
+
+/// Segments from which a run of one method steps its shadow ahead on a core of its own,
+/// where the machine has two or more: `rope run --method midpoint --segments 1000
+/// --duration 3` (the served default) then takes 0.70 s of wall where it took 0.85, for
+/// 3 to 5 % more CPU (the channel, the thread); at N = 3 000, 2.74 s where it took 3.41
+/// (`docs/measurements.md`). A coarser run's shadow costs too little for it to pay.
+pub const SHADOW_AHEAD_FROM: usize = 1000;
+
+/// Whether `plan`'s shadow is stepped ahead on a core of its own: a run of one method (side by
+/// side, each method already has a thread) from [`SHADOW_AHEAD_FROM`] segments, on a machine
+/// with a core to spare. The estimates are the same either way, bit for bit.
+fn shadow_ahead(plan: &RunPlan) -> bool {
+    let cores = std::thread::available_parallelism().map_or(1, usize::from);
+    plan.frame_grid.is_none() && plan.segments >= SHADOW_AHEAD_FROM && cores >= 2
 }
 
 /// Runs `plan` on this thread alone, every frame kept in memory: [`run`] for a sink that does

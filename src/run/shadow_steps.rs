@@ -1,0 +1,219 @@
+//! Where the live estimate's shadow gets its states: stepped on the run's own thread, just
+//! when the run reaches each instant the two share ([`ShadowSteps::here`]), or ahead of it on
+//! a core of its own, each state sent over a bounded channel as it is made
+//! ([`ShadowSteps::ahead`]). The shadow never reads the run, so both give the same states,
+//! bit for bit; only where the CPU is spent differs.
+
+use super::trust::{ENERGY_BLOWUP, reference_energy};
+use crate::error::Diverged;
+use crate::methods::Method;
+use crate::model::geometry::{self, Point};
+use crate::model::support::{into_the_room, tip_in_the_room};
+use crossbeam_channel::{Receiver, Sender};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// How often, in time units, the shadow's energy is checked for a blow-up.
+const ENERGY_CHECK_EVERY: f64 = 1e-3;
+
+/// How many states the thread ahead may have made that the run has not read: it waits
+/// there (a few steps' CPU is all it can spend past the run's end).
+const AHEAD: usize = 8;
+
+/// The shadow's method and its blow-up watch.
+pub(super) struct Stepper {
+    method: Box<dyn Method>,
+    /// The shadow's energy after the start-up, to see it blow up.
+    energy_reference: f64,
+    /// When the shadow's energy was last checked.
+    energy_checked: f64,
+}
+
+impl Stepper {
+    /// One step, then the energy about every [`ENERGY_CHECK_EVERY`] time units, as the run's
+    /// own is watched: cheap against the steps between.
+    fn step(&mut self) -> Result<(), Diverged> {
+        self.method.step()?;
+        if self.method.time() < self.energy_checked + ENERGY_CHECK_EVERY {
+            return Ok(());
+        }
+        self.energy_checked = self.method.time();
+        let energy = self.method.energy().total();
+        if !energy.is_finite() || (energy - self.energy_reference).abs() > ENERGY_BLOWUP {
+            return Err(Diverged {
+                step: self.method.steps(),
+                time: self.method.time(),
+                reason: format!(
+                    "the energy of the shadow at N = {} grew without bound: E = {energy:.3e}",
+                    self.method.segments()
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    /// The tip, in the room.
+    fn tip(&self) -> Point {
+        let m = &self.method;
+        tip_in_the_room(m.support(), m.angles(), m.lengths())
+    }
+
+    /// The nodes (support … tip), in the room.
+    fn nodes(&self, nodes: &mut Vec<Point>) {
+        geometry::nodes_of(self.method.angles(), self.method.lengths(), nodes);
+        into_the_room(self.method.support(), nodes);
+    }
+}
+
+/// One state the thread ahead made: the shadow after `steps` steps.
+pub(super) struct State {
+    steps: u64,
+    tip: Point,
+    nodes: Vec<Point>,
+}
+
+/// The shadow's states, stepped here or ahead.
+pub(super) enum ShadowSteps {
+    Here(Box<Stepper>),
+    Ahead {
+        states: Receiver<Result<State, Diverged>>,
+        /// Node buffers the run has read, sent back to be filled again.
+        spare: Sender<Vec<Point>>,
+        /// The last state read.
+        now: State,
+        /// The thread's CPU nanoseconds so far.
+        cpu_nanos: Arc<AtomicU64>,
+    },
+}
+
+impl ShadowSteps {
+    /// The shadow `method`, stepped on the run's thread.
+    pub fn here(method: Box<dyn Method>) -> Self {
+        Self::Here(Box::new(Stepper {
+            energy_reference: reference_energy(method.as_ref()),
+            method,
+            energy_checked: f64::NEG_INFINITY,
+        }))
+    }
+
+    /// The same, stepped ahead on a thread of its own; where the thread cannot start, here.
+    pub fn ahead(self) -> Self {
+        let Self::Here(mut stepper) = self else {
+            return self;
+        };
+        let (send, states) = crossbeam_channel::bounded(AHEAD);
+        let (spare, recycled) = crossbeam_channel::unbounded::<Vec<Point>>();
+        let cpu_nanos = Arc::new(AtomicU64::new(0));
+        let counted = Arc::clone(&cpu_nanos);
+        let mut nodes = Vec::new();
+        stepper.nodes(&mut nodes);
+        let first = State {
+            steps: stepper.method.steps(),
+            tip: stepper.tip(),
+            nodes,
+        };
+        // The thread owns the shadow; the run reads what it sends, in order, until it drops
+        // the receiver, which ends the thread at its next send.
+        let spawned = std::thread::Builder::new()
+            .name("rope-shadow".into())
+            .spawn(move || {
+                let cpu = cpu_time::ThreadTime::now();
+                loop {
+                    let made = stepper.step().map(|()| {
+                        let mut nodes = recycled.try_recv().unwrap_or_default();
+                        stepper.nodes(&mut nodes);
+                        State {
+                            steps: stepper.method.steps(),
+                            tip: stepper.tip(),
+                            nodes,
+                        }
+                    });
+                    let lost = made.is_err();
+                    let nanos = u64::try_from(cpu.elapsed().as_nanos()).unwrap_or(u64::MAX);
+                    counted.store(nanos, Ordering::Relaxed);
+                    if send.send(made).is_err() || lost {
+                        return;
+                    }
+                }
+            });
+        match spawned {
+            Ok(_) => Self::Ahead {
+                states,
+                spare,
+                now: first,
+                cpu_nanos,
+            },
+            // (The closure, and the shadow in it, are gone with the failed spawn.)
+            Err(err) => {
+                let (send, states) = crossbeam_channel::bounded(1);
+                let _ = send.send(Err(Diverged {
+                    step: 0,
+                    time: 0.0,
+                    reason: format!("the shadow's thread could not start: {err}"),
+                }));
+                Self::Ahead {
+                    states,
+                    spare,
+                    now: first,
+                    cpu_nanos,
+                }
+            }
+        }
+    }
+
+    /// Brings the shadow to `target` steps (never back): `Err` why it stopped, if it did.
+    pub fn advance_to(&mut self, target: u64) -> Result<(), Diverged> {
+        match self {
+            Self::Here(stepper) => {
+                while stepper.method.steps() < target {
+                    stepper.step()?;
+                }
+                Ok(())
+            }
+            Self::Ahead {
+                states, spare, now, ..
+            } => {
+                while now.steps < target {
+                    let next = states.recv().unwrap_or_else(|_| {
+                        Err(Diverged {
+                            step: now.steps + 1,
+                            time: f64::NAN,
+                            reason: "the shadow's thread stopped".to_owned(),
+                        })
+                    })?;
+                    let read = std::mem::replace(now, next);
+                    let _ = spare.send(read.nodes);
+                }
+                Ok(())
+            }
+        }
+    }
+
+    /// The shadow's tip now, in the room.
+    pub fn tip(&self) -> Point {
+        match self {
+            Self::Here(stepper) => stepper.tip(),
+            Self::Ahead { now, .. } => now.tip,
+        }
+    }
+
+    /// The shadow's nodes now (support … tip), in the room, into `nodes`.
+    pub fn nodes(&self, nodes: &mut Vec<Point>) {
+        match self {
+            Self::Here(stepper) => stepper.nodes(nodes),
+            Self::Ahead { now, .. } => {
+                nodes.clear();
+                nodes.extend_from_slice(&now.nodes);
+            }
+        }
+    }
+
+    /// CPU seconds a thread of its own has spent on the shadow (none, stepped here: the run's
+    /// thread counts them).
+    pub fn own_thread_seconds(&self) -> f64 {
+        match self {
+            Self::Here(_) => 0.0,
+            Self::Ahead { cpu_nanos, .. } => cpu_nanos.load(Ordering::Relaxed) as f64 * 1e-9,
+        }
+    }
+}
