@@ -2,9 +2,11 @@
 //! ([`run::run`]) and `rope study` ([`study::study`]). Each takes the parsed flags and a
 //! [`Session`] (the flag that stops it, and who hears what it says), does the whole job and
 //! returns how it ended; the binary only parses, dispatches, prints the final error and
-//! maps the outcome to an exit code. What rope tells the user is made in [`notices`].
+//! maps the outcome to an exit code. What rope tells the user is made in [`notices`] (the
+//! pilots' lines in [`pilot_notices`], a sweep's in [`sweep_notices`]).
 
 pub mod notices;
+pub mod pilot_notices;
 pub mod run;
 pub mod study;
 pub mod sweep_notices;

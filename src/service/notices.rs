@@ -3,12 +3,13 @@
 //! them ([`Terminal`]); a test collects them ([`Collected`]) and asks which were told, with
 //! no stderr to parse.
 
+use super::pilot_notices;
 use crate::cli::DefaultMethod;
 use crate::methods::MethodKind;
 use crate::model::Scene;
 use crate::model::scene::{FOLD_RODS_ACROSS_GAP, FOLD_THEORY_GAP};
 use crate::plan::Planned;
-use crate::plan::pilot::{self, Basis, Pilots};
+use crate::plan::pilot::{Basis, Pilots};
 use crate::run::config::{at_most_three_digits, short_step, trimmed_fixed};
 use crate::run::simulate::Exceeded;
 use crate::run::{RunPlan, cost};
@@ -210,7 +211,7 @@ pub fn announce(asked: &Asked, plans: &[Planned]) -> Vec<Notice> {
         if let Some(pilots) = pilots.as_ref().filter(flew) {
             notices.push(Notice::new(
                 Topic::Pilots,
-                pilot_lines(pilots, plan.duration),
+                pilot_notices::pilot_lines(pilots, plan.duration),
             ));
         }
         notices.push(Notice::new(
@@ -352,61 +353,6 @@ fn step_text(dt: f64) -> String {
         }
         _ => short,
     }
-}
-
-/// What the pilots of `--tolerance` measured, a line per method.
-fn pilot_lines(pilots: &Pilots, duration: f64) -> String {
-    let seconds = pilots.seconds();
-    let mut text = format!(
-        "rope: tolerance pilots: to t = {}, {seconds:.2} s of CPU; the largest live tip estimate at each N flown:",
-        duration.min(pilot::WINDOW)
-    );
-    for p in &pilots.flown {
-        let measured: Vec<String> = p
-            .measured
-            .iter()
-            .map(|(n, e)| format!("{e:.1e} at N = {n}"))
-            .collect();
-        let measured = measured.join(", ");
-        let what = match (&p.diverged, &p.model, p.held_at) {
-            (Some(d), _, _) => format!("ruled out, a pilot diverged: {d}"),
-            (None, _, None) if p.measured_by.is_some() => format!(
-                "not flown: its {} are the {}'s, whose pilots measure their error",
-                p.method.descriptor().discretization,
-                p.measured_by.map_or("", MethodKind::name)
-            ),
-            (None, _, None) if !p.flew() => "not flown".to_owned(),
-            (None, _, None) if p.measured.is_empty() && !p.shadow_lost.is_empty() => {
-                let lost: Vec<String> = p
-                    .shadow_lost
-                    .iter()
-                    .map(|(n, why)| format!("at N = {n}, {why}"))
-                    .collect();
-                format!(
-                    "not measured: the method ran, but its error estimate's coarser run (the shadow at N/2) diverged ({})",
-                    lost.join("; ")
-                )
-            }
-            (None, _, Some(n)) => format!(
-                "{measured} → holds the tolerance at N = {n} by its own estimate (×{} safety)",
-                pilot::SAFETY
-            ),
-            (None, Some(m), None) => {
-                // Three significant digits, however small the constant.
-                let constant = match m.constant >= 0.01 {
-                    true => format!("{:.3}", m.constant),
-                    false => format!("{:.2e}", m.constant),
-                };
-                format!(
-                    "{measured} → error ≈ {constant} h^{:.2} (×{:.1} safety)",
-                    m.order, m.safety
-                )
-            }
-            (None, None, None) => format!("{measured} → no model fitted"),
-        };
-        text += &format!("\n  {}: {what}", p.method);
-    }
-    text
 }
 
 /// Warns of a fold whose gap spans fewer than [`FOLD_RODS_ACROSS_GAP`] rods: its bend is
