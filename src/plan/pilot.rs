@@ -226,7 +226,7 @@ impl Basis {
                 "the committed error model, measured up to large N, over the pilots' own, which asked fewer rods: a release's error constant goes on growing past the pilots' N ≤ 64"
             }
             Self::Atlas => {
-                "the release atlas of the chosen rods: their worst error to t = 3 at every 1/3000 of a time unit, measured at the release angles 10° apart (the chain's rods from 0° up to N = 566, below 20° to 1131, the graded rods from 20° up to N = 1600; and to t = 5 from 40° for a longer run, up to N = 1131), at this angle's own N where the atlas measured it (one of those angles, or of the 5°, 15°, …, 85° between them) against a reference that can judge the tolerance, else from its two neighbours times the margin the angles between them showed, or from the largest error of every angle measured times how far one angle strayed above all the others, whichever asks fewer rods (`scripts/release-atlas.sh`)"
+                "the release atlas of the chosen rods: their worst error to t = 3 (to t = 5 from 40°) at every 1/3000 of a time unit, measured every 5° of release angle against converged references: at this angle, or from its two neighbours or every angle's largest, times the margin measured for each (`scripts/release-atlas.sh`; docs/guide.md, § --tolerance)"
             }
             Self::Committed => {
                 "the committed error model, fitted to t = 3 over six scenes by `rope study --estimate-check`, no cheaper run found by the pilots that were worth their cost"
