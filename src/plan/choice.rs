@@ -35,8 +35,8 @@ pub struct Choice {
 /// The cheapest method, N and k whose tip error `committed` (the committed models for this
 /// scene, duration and tolerance) predicts within `tolerance`, among the methods that can
 /// start from `scene` and whose run `fits` (the caller's limits on time and memory, asked as
-/// `fits(method, N, k)`): of the models measured over the whole duration ([`Committed::covers`]) where one
-/// of them reaches `tolerance`, else of all.
+/// `fits(method, N, k)`): of the models measured over the whole duration
+/// ([`Committed::covers`]) where one of them reaches `tolerance`, else of all.
 pub fn from_committed(
     tolerance: f64,
     duration: f64,

@@ -26,8 +26,8 @@ pub enum TipBound {
     #[default]
     FirstOrder,
     /// Richardson's estimate at an order measured on the scene itself (by `--tolerance`'s
-    /// pilots), times `safety` (at least 1), where that is below the first-order bound: for a scene with
-    /// no whip, whose error keeps the order the pilots saw (a mode's). At first order there
+    /// pilots), times `safety` (at least 1), where that is below the first-order bound: for a
+    /// scene with no whip, whose error keeps the order the pilots saw (a mode's). At first order there
     /// the bound reads about three times a second-order error, and a run whose truth is a
     /// third of its tolerance would be flagged.
     Observed { order: f64, safety: f64 },

@@ -89,7 +89,7 @@ pub fn run<S: FrameSink>(
 /// Segments from which a run of one method steps its shadow ahead on a core of its own,
 /// where the machine has two or more: `rope run --method midpoint --segments 1000
 /// --duration 3` (the served default) then takes 0.70 s of wall where it took 0.85, for
-/// 3 to 5 % more CPU (the channel, the thread); at N = 3 000, 2.74 s where it took 3.41
+/// 1 to 5 % more CPU (the channel, the thread); at N = 3 000, 2.74 s where it took 3.41
 /// (`docs/measurements.md`). A coarser run's shadow costs too little for it to pay.
 pub const SHADOW_AHEAD_FROM: usize = 1000;
 

@@ -226,8 +226,8 @@ impl EstimateVerdict {
 }
 
 /// Runs `method` at N = `segments` and step `dt` from `scene`, its shadow with it bounding
-/// the tip's error as `shadow` says if there is one, and measures it against `reference` at every instant: at every one of its own
-/// steps, or, against a reference known only at its rows ([`ConvergedTip::rows_only`], every
+/// the tip's error as `shadow` says if there is one, and measures it against `reference` at
+/// every instant: at every one of its own steps, or, against a reference known only at its rows ([`ConvergedTip::rows_only`], every
 /// 1/[`JUDGE_RATE`]), at every row, the run kept at [`judging_step`] (a cubic through the
 /// run's own steps misses a whip's tip by up to 2.9e-4 from 20°, the graded rods at N = 370,
 /// more than the tolerances it would judge). `None` if it could not start or diverged. Its

@@ -19,8 +19,8 @@ struct Row<'a> {
     /// The chosen run's largest tip error at every instant.
     worst: Option<f64>,
     held: Option<bool>,
-    /// The largest bound of its live estimate (at first order, or a mode's at its pilots' order), at every step it shares with its
-    /// shadow: what its exit status reads.
+    /// The largest bound of its live estimate (at first order, or a mode's at its pilots'
+    /// order), at every step it shares with its shadow: what its exit status reads.
     estimate_bound: Option<f64>,
     verdict: Option<&'a str>,
     pilot_seconds: Option<f64>,
