@@ -9,7 +9,8 @@
 //! climb stops there. After each pilot, each method's own error model is fitted to the levels
 //! it has flown, and the cheapest run those models (or the committed ones) allow is the best
 //! known so far; the climb also stops where the next pilot would take the pilots' cost past
-//! that run's: a scene that needs few segments pays for little more than one cheap run twice.
+//! that run's, and passes over a pilot that could not save its own cost: a scene that needs few
+//! segments pays for little more than one cheap run twice.
 
 use super::choice::{self, Choice};
 use super::committed::Committed;
@@ -153,6 +154,22 @@ impl Pilot {
         Some((segments, estimate * rescale * SAFETY))
     }
 
+    /// The fewest segments this method is likely to need for `eps`, at least `first`: from its
+    /// last level flown, were its error to fall at the method's nominal order from the
+    /// estimate there, with no safety (the estimate is made at that order); `first` before a
+    /// level. An estimate, not a bound (an error may fall faster than the nominal order for a
+    /// while): it only rules which pilots are worth flying, never what the run may claim.
+    pub fn fewest(&self, eps: f64, first: usize) -> usize {
+        let nominal = f64::from(self.method.descriptor().order_in_h).max(1.0);
+        match self.measured.last() {
+            Some(&(segments, estimate)) if estimate > eps => {
+                let wanted = segments as f64 * (estimate / eps).powf(1.0 / nominal);
+                (wanted.min(1e12).ceil() as usize).max(first)
+            }
+            _ => first,
+        }
+    }
+
     /// The order the estimates fell at between the last two levels flown, between 1 (a
     /// whip's, the lowest any method shows) and the method's nominal order; `None` before two.
     pub fn observed_order(&self) -> Option<f64> {
@@ -273,9 +290,11 @@ pub(super) struct Best {
 /// The ladder: each level for every method not ruled out, cheapest first, until a pilot holds
 /// `eps` by its own [`Pilot::bound`] (and its run `fits`), or the next pilot would take the
 /// pilots' predicted CPU past what the best choice known so far would cost (measuring must
-/// cost less than it can save). That best is at first the committed models' choice
-/// ([`choice::from_committed`]), then after each pilot the cheapest that the pilots' own
-/// models allow, where cheaper: a scene whose pilots show it cheap stops measuring early.
+/// cost less than it can save); a pilot that could not save its own cost, the best less its
+/// method's likeliest run ([`Pilot::fewest`]), is passed over. That best is at first the
+/// committed models' choice ([`choice::from_committed`]), then after each pilot the cheapest
+/// that the pilots' own models allow, where cheaper: a scene whose pilots show it cheap stops
+/// measuring early.
 /// `seconds` is a run's predicted CPU, shadow included; `before_flying` is told of the first
 /// pilot just before it flies (not at all where none does).
 pub(super) fn climb(
@@ -318,10 +337,27 @@ pub(super) fn climb(
                 continue;
             }
             let cost = level_seconds(pilot.method, segments, duration);
-            spent += cost;
-            if best.is_some_and(|b| spent > b.seconds) {
+            if best.is_some_and(|b| spent + cost > b.seconds) {
                 return (pilots, best);
             }
+            // A pilot that cannot save what it costs does not fly: where the best known is
+            // measured (not a committed model outside its window), the most it could save is
+            // that run's cost less its method's likeliest run ([`Pilot::fewest`]).
+            let trusted =
+                best.filter(|b| b.basis != Basis::Committed || models.covers(b.choice.method));
+            if let Some(b) = trusted {
+                let mut fewest = pilot.fewest(eps, levels[0]);
+                if models.covers(pilot.method) {
+                    // Its committed model may rule once it has flown ([`ruling_model`]).
+                    fewest =
+                        fewest.min(models.model(pilot.method).segments_for(eps).max(levels[0]));
+                }
+                let floor = seconds(&choice::at(pilot.method, fewest, eps, duration));
+                if spent + cost > b.seconds - floor {
+                    continue;
+                }
+            }
+            spent += cost;
             if let Some(tell) = before_flying.take() {
                 tell(FirstPilot {
                     method: pilot.method,
