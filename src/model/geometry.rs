@@ -375,6 +375,40 @@ pub fn tip_acceleration_of(
 ) -> Vector2<f64> {
     let h = length_of(lengths, angles.len());
     let mut a = Vector2::zeros();
+    // (A rate or acceleration not given is zero: the nodes are always all drawn.)
+    let at = |values: &[f64], i: usize| values.get(i).copied().unwrap_or(0.0);
+    for (i, &phi) in angles.iter().enumerate() {
+        let (w, alpha) = (at(angular_velocity, i), at(angular_acceleration, i));
+        let (s, c) = phi.sin_cos();
+        a += h(i) * (alpha * Vector2::new(-s, c) - w * w * Vector2::new(c, s));
+    }
+    a
+}
+
+/// What a frame reads of the rods' motion besides their nodes: the tip's velocity and
+/// acceleration and the string's momentum (mass 1), in the support's frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Motion {
+    pub tip_velocity: Vector2<f64>,
+    pub momentum: Vector2<f64>,
+    pub tip_acceleration: Vector2<f64>,
+}
+
+/// [`nodes_of`] into `nodes`, and [`tip_velocity_of`], [`momentum_of`] and
+/// [`tip_acceleration_of`], in one pass over the rods: one sine and cosine a rod where the
+/// four took four (a small run's frames spent 6 % of its CPU on them).
+pub fn motion_of(
+    angles: &[f64],
+    angular_velocity: &[f64],
+    angular_acceleration: &[f64],
+    lengths: Option<&[f64]>,
+    nodes: &mut Vec<Point>,
+) -> Motion {
+    let h = length_of(lengths, angles.len());
+    nodes.clear();
+    let mut p = Point::origin();
+    nodes.push(p);
+    let (mut start, mut motion) = (0.0, Motion::default());
     for (i, ((&phi, &w), &alpha)) in angles
         .iter()
         .zip(angular_velocity)
@@ -382,14 +416,52 @@ pub fn tip_acceleration_of(
         .enumerate()
     {
         let (s, c) = phi.sin_cos();
-        a += h(i) * (alpha * Vector2::new(-s, c) - w * w * Vector2::new(c, s));
+        let (t, n, l) = (Vector2::new(c, s), Vector2::new(-s, c), h(i));
+        p += l * t; // eqs. (14)–(15)
+        nodes.push(p);
+        motion.tip_velocity += l * w * n;
+        motion.momentum += l * w * (1.0 - (start + 0.5 * l)) * n;
+        motion.tip_acceleration += l * (alpha * n - w * w * t);
+        start += l;
     }
-    a
+    motion
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_motion_in_one_pass_is_the_four_figures_each_by_its_own() {
+        let angles = [0.3, -0.2, 1.1, 0.7, -1.4];
+        let rates = [0.5, 2.0, -1.5, 0.25, 3.0];
+        let accelerations = [-1.0, 0.4, 2.5, -0.3, 0.8];
+        let graded = [0.3, 0.25, 0.2, 0.15, 0.1];
+        for lengths in [None, Some(&graded[..])] {
+            let mut nodes = Vec::new();
+            let motion = motion_of(&angles, &rates, &accelerations, lengths, &mut nodes);
+            let mut each = Vec::new();
+            nodes_of(&angles, lengths, &mut each);
+            let close = |a: Vector2<f64>, b: Vector2<f64>| (a - b).norm() < 1e-14;
+            assert!(
+                nodes
+                    .iter()
+                    .zip(&each)
+                    .all(|(a, b)| close(a.coords, b.coords))
+            );
+            assert_eq!(nodes.len(), each.len());
+            assert!(close(
+                motion.tip_velocity,
+                tip_velocity_of(&angles, &rates, lengths)
+            ));
+            assert!(close(
+                motion.momentum,
+                momentum_of(&angles, &rates, lengths)
+            ));
+            let a = tip_acceleration_of(&angles, &rates, &accelerations, lengths);
+            assert!(close(motion.tip_acceleration, a));
+        }
+    }
 
     #[test]
     fn a_tangent_turned_by_a_small_angle_is_the_tangent_at_the_sum() {

@@ -151,7 +151,13 @@ pub fn frame(method: &mut dyn Method, obs: &mut Observation, base: EnergyBase) -
     let support = method.support();
     let lengths = method.lengths();
     let mut nodes = Vec::with_capacity(obs.angle.len() + 1);
-    geometry::nodes_of(&obs.angle, lengths, &mut nodes);
+    let motion = geometry::motion_of(
+        &obs.angle,
+        &obs.angular_velocity,
+        &obs.angular_acceleration,
+        lengths,
+        &mut nodes,
+    );
     let edges = lengths.map(|l| {
         let mut edges = Vec::with_capacity(l.len() + 1);
         geometry::edges(l.len(), Some(l), &mut edges);
@@ -173,15 +179,10 @@ pub fn frame(method: &mut dyn Method, obs: &mut Observation, base: EnergyBase) -
         energy_deviation: base.deviation(&energy, support),
         balance: support.map(|_| kept - base.start),
         support,
-        tip_velocity: geometry::tip_velocity_of(&obs.angle, &obs.angular_velocity, lengths)
-            + moving,
-        momentum: geometry::momentum_of(&obs.angle, &obs.angular_velocity, lengths) + moving,
-        tip_acceleration: geometry::tip_acceleration_of(
-            &obs.angle,
-            &obs.angular_velocity,
-            &obs.angular_acceleration,
-            lengths,
-        ) + Vector2::new(support.map_or(0.0, |s| s.acceleration), 0.0),
+        tip_velocity: motion.tip_velocity + moving,
+        momentum: motion.momentum + moving,
+        tip_acceleration: motion.tip_acceleration
+            + Vector2::new(support.map_or(0.0, |s| s.acceleration), 0.0),
         support_tension: method.support_tension(),
         constraint_residual: method.constraint_residual(),
         velocity_residual: method.velocity_residual(),
