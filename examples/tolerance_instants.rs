@@ -10,15 +10,15 @@
 //! change), and how far a cubic through its own steps misses its tip between them (against
 //! the run at k/6 at its own step nearest each 1/3 000).
 //!
-//! `cargo run --release --example tolerance_instants -- [EPS,EPS…] [SCENE,SCENE…] [DURATION]`:
-//! by default the fourteen runs of issue 61, 20° to 80° at 1e-3 and 1e-4, to t = 3, against
+//! `cargo run --release --example tolerance_instants -- [EPS,EPS…] [SCENE,SCENE…] [DURATION]`: by
+//! default the fourteen runs of issue 61, 20° to 80° at 1e-3 and 1e-4, to t = 3, against
 //! `assets/tolerance-check/references.csv`. A scene is a release angle (`40`), a mode of the
-//! check's (`mode=2`, a tip amplitude of 0.05), a fold by its gap (`fold=0.02`) or a shake
-//! from its steady state (`shake=2/1e-3`, frequency and amplitude). Past t = 3 (where those end), and for a fold or a shake, each scene's reference
-//! is computed as the tolerance check computes one, of the method the rule would choose there
-//! ([`reference_method`]), refined towards an own error of 1e-5 by one doubling at most (runs
-//! up to N = 6400: minutes a scene; a shake's from N = 128, towards a tenth of the smallest
-//! EPS, two doublings at most). Prints the two tables in Markdown.
+//! check's (`mode=2`, a tip amplitude of 0.05), a fold by its gap (`fold=0.02`) or a shake from its
+//! steady state (`shake=2/1e-3`, frequency and amplitude). Past t = 3 (where those end), and for a
+//! fold or a shake, each scene's reference is computed as the tolerance check computes one, of the
+//! method the rule would choose there ([`reference_method`]), refined towards an own error of 1e-5
+//! by one doubling at most (runs up to N = 6400: minutes a scene; a shake's from N = 128, towards a
+//! tenth of the smallest EPS, two doublings at most). Prints the two tables in Markdown.
 
 #[path = "common/args.rs"]
 mod args;

@@ -117,9 +117,9 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     ns_per_segment_step: 348.0,
     tension_first_at: 0.5,
     discretization: "rods",
-    // The state (centre, angle, tangent, velocity, rate: 64), Newton's unknowns and guesses
-    // (Δθ, μ, two past μ/k², two past torques: 72), its per-rod and per-joint blocks (slope,
-    // F, U, gap, y, pivot, gain: 176), A's factorisation for the projection (112) and its output (24), the
+    // The state (centre, angle, tangent, velocity, rate: 64), Newton's unknowns and guesses (Δθ, μ,
+    // two past μ/k², two past torques: 72), its per-rod and per-joint blocks (slope, F, U, gap, y,
+    // pivot, gain: 176), A's factorisation for the projection (112) and its output (24), the
     // observer's joint-force solve (96).
     bytes_per_segment: 64 + 72 + 176 + 112 + 24 + 96,
     order_in_h: 2,

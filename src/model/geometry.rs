@@ -375,10 +375,12 @@ pub fn tip_acceleration_of(
 ) -> Vector2<f64> {
     let h = length_of(lengths, angles.len());
     let mut a = Vector2::zeros();
-    // (A rate or acceleration not given is zero: the nodes are always all drawn.)
-    let at = |values: &[f64], i: usize| values.get(i).copied().unwrap_or(0.0);
-    for (i, &phi) in angles.iter().enumerate() {
-        let (w, alpha) = (at(angular_velocity, i), at(angular_acceleration, i));
+    for (i, ((&phi, &w), &alpha)) in angles
+        .iter()
+        .zip(angular_velocity)
+        .zip(angular_acceleration)
+        .enumerate()
+    {
         let (s, c) = phi.sin_cos();
         a += h(i) * (alpha * Vector2::new(-s, c) - w * w * Vector2::new(c, s));
     }
@@ -409,12 +411,10 @@ pub fn motion_of(
     let mut p = Point::origin();
     nodes.push(p);
     let (mut start, mut motion) = (0.0, Motion::default());
-    for (i, ((&phi, &w), &alpha)) in angles
-        .iter()
-        .zip(angular_velocity)
-        .zip(angular_acceleration)
-        .enumerate()
-    {
+    // (A rate or acceleration not given is zero: the nodes are always all drawn.)
+    let at = |values: &[f64], i: usize| values.get(i).copied().unwrap_or(0.0);
+    for (i, &phi) in angles.iter().enumerate() {
+        let (w, alpha) = (at(angular_velocity, i), at(angular_acceleration, i));
         let (s, c) = phi.sin_cos();
         let (t, n, l) = (Vector2::new(c, s), Vector2::new(-s, c), h(i));
         p += l * t; // eqs. (14)–(15)
@@ -460,6 +460,10 @@ mod tests {
             ));
             let a = tip_acceleration_of(&angles, &rates, &accelerations, lengths);
             assert!(close(motion.tip_acceleration, a));
+            // A method that gives no accelerations still has every node drawn.
+            let bare = motion_of(&angles, &rates, &[], lengths, &mut nodes);
+            assert_eq!(nodes.len(), each.len());
+            assert!(close(bare.tip_velocity, motion.tip_velocity));
         }
     }
 

@@ -224,8 +224,9 @@ pub enum Basis {
     /// The committed model alone: no pilot was worth its cost, or none measured anything.
     Committed,
     /// The committed model, from the release atlas of the chosen rods
-    /// ([`from_atlas`](super::committed::from_atlas)): their error measured at this angle, or from its neighbours,
-    /// or the envelope of every angle's, up to large N, alone or tighter than the pilots' own.
+    /// ([`from_atlas`](super::committed::from_atlas)): their error measured at this angle, or from
+    /// its neighbours, or the envelope of every angle's, up to large N, alone or tighter than the
+    /// pilots' own.
     Atlas,
 }
 
@@ -456,11 +457,11 @@ fn own_model(method: MethodKind, measured: &[(usize, f64)]) -> Option<ErrorModel
     })
 }
 
-/// Of `pilot`'s method's own model (from its pilots) and its committed one (in `models`, for
-/// this scene, duration and tolerance: [`Committed::look_up`]), the one the choice rests on,
-/// and which it is; `None` without an own model. The committed one only where it was
-/// measured over the run's duration ([`Committed::covers`]: from 45° to t = 5, the law fitted to t ≤ 3 asked N = 491 where the
-/// pilots' 0.93/N was near the truth, and the run missed 1e-3), and there:
+/// Of `pilot`'s method's own model (from its pilots) and its committed one (in `models`, for this
+/// scene, duration and tolerance: [`Committed::look_up`]), the one the choice rests on, and which
+/// it is; `None` without an own model. The committed one only where it was measured over the run's
+/// duration ([`Committed::covers`]: from 45° to t = 5, the law fitted to t ≤ 3 asked N = 491 where
+/// the pilots' 0.93/N was near the truth, and the run missed 1e-3), and there:
 /// - for a release, always ([`Committed::floors_pilots`]): its error constant goes on growing
 ///   past the pilots' N (from 80°, fitted at 0.14/N at N ≤ 64, it is 0.30/N at N = 2 639,
 ///   where the pilots' own model asked N = 2 639 for 1e-4 and the run missed it by 15 %);

@@ -19,12 +19,12 @@ use crate::run::cost::{self, Cost};
 /// often it is drawn, never changes what it models.
 pub const COSTED_LOG_RATE: f64 = 60.0;
 
-/// What `--tolerance EPS` chooses for `scene`, for a run of `duration` within `memory` bytes
-/// (its frames costed at [`COSTED_LOG_RATE`], whatever it logs): the cheapest choice whose
-/// run fits in [`choice::MAX_SECONDS`] of CPU and that memory: a pilot run that already holds EPS, or
-/// the cheapest the scene's own error models allow (measured by the pilots' ladder), or the
-/// committed models' choice where the pilots would cost more than it (or found nothing).
-/// Returns the pilots flown.
+/// What `--tolerance EPS` chooses for `scene`, for a run of `duration` within `memory` bytes (its
+/// frames costed at [`COSTED_LOG_RATE`], whatever it logs): the cheapest choice whose run fits in
+/// [`choice::MAX_SECONDS`] of CPU and that memory: a pilot run that already holds EPS, or the
+/// cheapest the scene's own error models allow (measured by the pilots' ladder), or the committed
+/// models' choice where the pilots would cost more than it (or found nothing). Returns the pilots
+/// flown.
 pub fn choose(
     eps: f64,
     scene: &Scene,

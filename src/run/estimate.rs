@@ -25,11 +25,11 @@ pub enum TipBound {
     /// `assets/tolerance-instants/`). The default, and a release's, a fold's and a shake's.
     #[default]
     FirstOrder,
-    /// Richardson's estimate at an order measured on the scene itself (by `--tolerance`'s
-    /// pilots), times `safety` (at least 1), where that is below the first-order bound: for a
-    /// scene with no whip, whose error keeps the order the pilots saw (a mode's). At first order there
-    /// the bound reads about three times a second-order error, and a run whose truth is a
-    /// third of its tolerance would be flagged.
+    /// Richardson's estimate at an order measured on the scene itself (by `--tolerance`'s pilots),
+    /// times `safety` (at least 1), where that is below the first-order bound: for a scene with no
+    /// whip, whose error keeps the order the pilots saw (a mode's). At first order there the bound
+    /// reads about three times a second-order error, and a run whose truth is a third of its
+    /// tolerance would be flagged.
     Observed { order: f64, safety: f64 },
 }
 

@@ -157,9 +157,9 @@ pub struct Summary {
     /// The tip error `--tolerance` asked for.
     pub tolerance: Option<f64>,
     /// Whether the live tip estimate's bound ([`Summary::tolerance_bound`]) stayed within the
-    /// tolerance at every step the run shares with its shadow: true where the tolerance held (the bound errs on
-    /// the safe side), false where it may not have (a run whose true error is above half the
-    /// tolerance may be false though it held); absent without a tolerance, or where the
+    /// tolerance at every step the run shares with its shadow: true where the tolerance held (the
+    /// bound errs on the safe side), false where it may not have (a run whose true error is above
+    /// half the tolerance may be false though it held); absent without a tolerance, or where the
     /// estimate was lost before the end (`error_estimate.lost`).
     pub tolerance_met: Option<bool>,
     /// How the live estimate bounded the tip's error for the tolerance: at first order (a

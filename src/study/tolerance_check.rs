@@ -226,14 +226,14 @@ impl EstimateVerdict {
     }
 }
 
-/// Runs `method` at N = `segments` and step `dt` from `scene`, its shadow with it bounding
-/// the tip's error as `shadow` says if there is one, and measures it against `reference` at
-/// every instant: at every one of its own steps, or, against a reference known only at its rows ([`ConvergedTip::rows_only`], every
-/// 1/[`JUDGE_RATE`]), at every row, the run kept at [`judging_step`] (a cubic through the
-/// run's own steps misses a whip's tip by up to 2.9e-4 from 20°, the graded rods at N = 370,
-/// more than the tolerances it would judge). `None` if it could not start or diverged. Its
-/// seconds are those of the run `rope run` makes, frames at [`LOG_RATE`]; its tip is kept in
-/// a second run, untimed.
+/// Runs `method` at N = `segments` and step `dt` from `scene`, its shadow with it bounding the
+/// tip's error as `shadow` says if there is one, and measures it against `reference` at every
+/// instant: at every one of its own steps, or, against a reference known only at its rows
+/// ([`ConvergedTip::rows_only`], every 1/[`JUDGE_RATE`]), at every row, the run kept at
+/// [`judging_step`] (a cubic through the run's own steps misses a whip's tip by up to 2.9e-4 from
+/// 20°, the graded rods at N = 370, more than the tolerances it would judge). `None` if it could
+/// not start or diverged. Its seconds are those of the run `rope run` makes, frames at
+/// [`LOG_RATE`]; its tip is kept in a second run, untimed.
 pub fn measure(
     method: MethodKind,
     scene: &Scene,
@@ -372,9 +372,9 @@ pub fn best_read<'a>(read: &'a [ReadReference], scene: &Scene) -> Option<&'a Rea
         .min_by(|a, b| a.own_error.total_cmp(&b.own_error))
 }
 
-/// The whole check: a reference per scene (read from `read` where it has one, [`best_read`], else computed,
-/// the scenes' in parallel), then each scene's grid and each tolerance's choice one run at a
-/// time, so that their wall seconds are one thread's. `tick` is called once per reference and
+/// The whole check: a reference per scene (read from `read` where it has one, [`best_read`], else
+/// computed, the scenes' in parallel), then each scene's grid and each tolerance's choice one run
+/// at a time, so that their wall seconds are one thread's. `tick` is called once per reference and
 /// once per run.
 pub fn check(
     spec: &CheckSpec,
