@@ -128,10 +128,11 @@ fn a_folds_first_pilot_is_told_before_it_flies_and_a_refused_fold_tells_nothing(
     // Sixteen rods across a gap of 0.1: the fold's own method at N = 160, to t = 0.5.
     let scene = Scene::Fold { gap: 0.1 };
     let told = std::cell::Cell::new(None);
-    let (choice, _) = rope::plan::tolerance::choose_telling(1e-3, &scene, 0.5, u64::MAX, |first| {
-        assert!(told.replace(Some(first)).is_none(), "told twice");
-    })
-    .unwrap();
+    let (choice, _) =
+        rope::plan::tolerance::choose_telling(1e-3, &scene, 0.5, u64::MAX, &|_| None, |first| {
+            assert!(told.replace(Some(first)).is_none(), "told twice");
+        })
+        .unwrap();
     let first = told.get().expect("the first pilot is told");
     assert_eq!(
         (first.method, first.segments, first.duration),
@@ -144,8 +145,13 @@ fn a_folds_first_pilot_is_told_before_it_flies_and_a_refused_fold_tells_nothing(
     assert_eq!(choice.method, MethodKind::Midpoint);
     // Past the snap the request is refused before a pilot is told of, or flies.
     let snap = fold::snap_time(0.1);
-    let refused = rope::plan::tolerance::choose_telling(1e-3, &scene, snap + 0.1, u64::MAX, |_| {
-        panic!("a refused fold told of a pilot")
-    });
+    let refused = rope::plan::tolerance::choose_telling(
+        1e-3,
+        &scene,
+        snap + 0.1,
+        u64::MAX,
+        &|_| None,
+        |_| panic!("a refused fold told of a pilot"),
+    );
     assert!(refused.is_err());
 }

@@ -20,7 +20,9 @@ use crate::methods::MethodKind;
 use crate::model::Scene;
 use crate::run::cost::Cost;
 use crate::run::estimate::TipBound;
+use crate::run::rehearsal::Rehearsal;
 use crate::run::simulate::{self, Options};
+use crate::run::{RunPlan, Summary};
 use std::time::Instant;
 
 /// The pilots' segment counts: three levels, so that the order is observed, not assumed.
@@ -111,34 +113,39 @@ impl Pilot {
         }
     }
 
-    /// Flies `segments` (at the method's tolerance step, to `duration`, at most [`WINDOW`]).
-    fn fly_at(&mut self, scene: &Scene, segments: usize, duration: f64) {
+    /// Flies `segments` (at the method's tolerance step, to `duration`, at most [`WINDOW`]):
+    /// as the run its choice would make, where the pilot is the whole run and `rehearse` gives
+    /// that run's plan (its frames kept, the rehearsal returned), else bare.
+    fn fly_at(
+        &mut self,
+        scene: &Scene,
+        segments: usize,
+        duration: f64,
+        rehearse: Rehearse<'_>,
+    ) -> Option<Rehearsal> {
         let started = Instant::now();
-        let options = Options {
-            duration: duration.min(WINDOW),
-            log_rate: RATE,
-            frame_grid: None,
-        };
         let dt = self.method.tolerance_dt(segments);
-        let run = simulate::run_shadowed(
-            self.method,
-            scene,
-            segments,
-            dt,
-            TipBound::FirstOrder,
-            &options,
-            |_| {},
-        );
-        if run.refused.is_none() {
-            if let Some(why) = run.diverged {
-                self.diverged = Some(why);
-            } else if let Some(why) = run.lost {
-                self.shadow_lost.push((segments, why));
-            } else if let Some(max_tip) = run.max_tip {
-                self.measured.push((segments, max_tip));
-            }
+        let whole = duration <= WINDOW;
+        let plan = whole
+            .then(|| rehearse(&choice::at(self.method, segments, f64::NAN, duration)))
+            .flatten();
+        let (run, rehearsal) = match plan.map(Rehearsal::fly) {
+            Some(Ok(rehearsal)) => (Flight::of(&rehearsal.summary), Some(rehearsal)),
+            Some(Err(_)) => (Flight::default(), None),
+            None => (
+                Flight::bare(self.method, scene, segments, dt, duration),
+                None,
+            ),
+        };
+        if let Some(why) = run.diverged {
+            self.diverged = Some(why);
+        } else if let Some(why) = run.lost {
+            self.shadow_lost.push((segments, why));
+        } else if let Some(max_tip) = run.max_tip {
+            self.measured.push((segments, max_tip));
         }
         self.seconds += started.elapsed().as_secs_f64();
+        rehearsal
     }
 
     /// A bound on the error of the last level flown: its largest live estimate, rescaled from
@@ -179,6 +186,52 @@ impl Pilot {
                 Some((below / last).log2().clamp(1.0, nominal.max(1.0)))
             }
             _ => None,
+        }
+    }
+}
+
+/// The plan a pilot of a choice's method, N and k flies as, the very run that choice would make,
+/// where its frames can be kept ([`Rehearsal::fits`]); `None`: it flies bare.
+pub type Rehearse<'a> = &'a dyn Fn(&Choice) -> Option<RunPlan>;
+
+/// What one pilot's flight measured.
+#[derive(Default)]
+struct Flight {
+    diverged: Option<Diverged>,
+    /// Why its shadow stopped before it, if it did.
+    lost: Option<Diverged>,
+    /// The largest live tip estimate at any step it shares with its shadow; `None` where it
+    /// could not start or carry a shadow.
+    max_tip: Option<f64>,
+}
+
+impl Flight {
+    /// The pilot flown bare: the method and its shadow, frames at [`RATE`] (none kept).
+    fn bare(method: MethodKind, scene: &Scene, segments: usize, dt: f64, duration: f64) -> Self {
+        let options = Options {
+            duration: duration.min(WINDOW),
+            log_rate: RATE,
+            frame_grid: None,
+        };
+        let bound = TipBound::FirstOrder;
+        let run = simulate::run_shadowed(method, scene, segments, dt, bound, &options, |_| {});
+        match run.refused {
+            Some(_) => Self::default(),
+            None => Self {
+                diverged: run.diverged,
+                lost: run.lost,
+                max_tip: run.max_tip,
+            },
+        }
+    }
+
+    /// What a rehearsal's summary says of the same.
+    fn of(summary: &Summary) -> Self {
+        let estimate = summary.error_estimate.as_ref();
+        Self {
+            diverged: summary.diverged.clone(),
+            lost: estimate.and_then(|e| e.lost.clone()),
+            max_tip: estimate.map(|e| e.max_tip),
         }
     }
 }
@@ -266,11 +319,14 @@ impl Basis {
 }
 
 /// What the pilots flew for a choice, and what the choice rests on.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct Pilots {
     /// One per method that can start from the scene, cheapest first (some perhaps not flown).
     pub flown: Vec<Pilot>,
     pub basis: Basis,
+    /// The pilot that held, flown as the run its choice makes, its frames kept (where the
+    /// caller asked it and they fit: [`Rehearse`]): that run, not to be flown again.
+    pub rehearsal: Option<Rehearsal>,
 }
 
 impl Pilots {
@@ -296,17 +352,21 @@ pub(super) struct Best {
 /// committed models' choice ([`choice::from_committed`]), then after each pilot the cheapest
 /// that the pilots' own models allow, where cheaper: a scene whose pilots show it cheap stops
 /// measuring early.
-/// `seconds` is a run's predicted CPU, shadow included; `before_flying` is told of the first
-/// pilot just before it flies (not at all where none does).
+/// `seconds` is a run's predicted CPU, shadow included; each pilot flies as `rehearse` says;
+/// `before_flying` is told of the first pilot just before it flies (not at all where none does).
 pub(super) fn climb(
-    eps: f64,
-    scene: &Scene,
-    duration: f64,
-    models: &Committed,
+    asked: Asked<'_>,
     seconds: impl Fn(&Choice) -> f64,
     fits: impl Fn(MethodKind, usize, f64) -> bool + Copy,
+    rehearse: Rehearse<'_>,
     before_flying: impl FnOnce(FirstPilot),
-) -> (Vec<Pilot>, Option<Best>) {
+) -> Climbed {
+    let Asked {
+        eps,
+        scene,
+        duration,
+        models,
+    } = asked;
     let mut before_flying = Some(before_flying);
     let mut pilots: Vec<Pilot> = choice::startable(scene, duration).map(Pilot::new).collect();
     let levels = levels(scene);
@@ -339,7 +399,7 @@ pub(super) fn climb(
             }
             let cost = level_seconds(pilot.method, segments, duration);
             if best.is_some_and(|b| spent + cost > b.seconds) {
-                return (pilots, best);
+                return Climbed::to(pilots, best);
             }
             // A pilot that cannot save what it costs does not fly: where the best known is
             // measured (not a committed model outside its window), the most it could save is
@@ -367,7 +427,7 @@ pub(super) fn climb(
                     seconds: cost,
                 });
             }
-            pilot.fly_at(scene, segments, duration);
+            let rehearsal = pilot.fly_at(scene, segments, duration, rehearse);
             if let Some((flown, bound)) = pilot.bound() {
                 let dt = pilot.method.tolerance_dt(flown);
                 let held = flown == segments && bound <= eps && pilot.diverged.is_none();
@@ -375,14 +435,15 @@ pub(super) fn climb(
                     pilot.held_at = Some(flown);
                     let choice = choice::at(pilot.method, flown, bound, duration);
                     let seconds = seconds(&choice);
-                    return (
+                    return Climbed {
                         pilots,
-                        Some(Best {
+                        best: Some(Best {
                             choice,
                             seconds,
                             basis: Basis::Held,
                         }),
-                    );
+                        rehearsal,
+                    };
                 }
             }
             pilot.model = match pilot.diverged {
@@ -402,7 +463,34 @@ pub(super) fn climb(
             };
         }
     }
-    (pilots, best)
+    Climbed::to(pilots, best)
+}
+
+/// What the pilots are asked: `eps` for `scene` to `duration`, its committed models `models`
+/// ([`Committed::look_up`]).
+pub(super) struct Asked<'a> {
+    pub(super) eps: f64,
+    pub(super) scene: &'a Scene,
+    pub(super) duration: f64,
+    pub(super) models: &'a Committed,
+}
+
+/// Where the ladder ended.
+pub(super) struct Climbed {
+    pub(super) pilots: Vec<Pilot>,
+    pub(super) best: Option<Best>,
+    /// The pilot that held, flown as its run, where it could be ([`Rehearse`]).
+    pub(super) rehearsal: Option<Rehearsal>,
+}
+
+impl Climbed {
+    fn to(pilots: Vec<Pilot>, best: Option<Best>) -> Self {
+        Self {
+            pilots,
+            best,
+            rehearsal: None,
+        }
+    }
 }
 
 /// The cheapest run, by `seconds`, of at least `fewest` segments (the pilots' first level),

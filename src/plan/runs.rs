@@ -2,13 +2,14 @@
 //! [`RunPlan`], and with `--tolerance` what the rule chose and what it rests on.
 
 use super::choice::Choice;
-use super::pilot::{FirstPilot, Pilots};
+use super::pilot::{FirstPilot, Pilots, Rehearse};
 use super::tolerance;
 use crate::error::ConfigError;
 use crate::methods::MethodKind;
 use crate::model::Scene;
 use crate::run::cost::Limits;
 use crate::run::estimate::TipBound;
+use crate::run::rehearsal::Rehearsal;
 use crate::run::{RunConfig, RunPlan};
 
 /// What `rope run` asks of each scene, its flags resolved (the command line makes it).
@@ -44,6 +45,9 @@ pub struct Planned {
     pub others: Vec<RunPlan>,
     /// What the pilot runs of `--tolerance` measured, and what its choice rests on.
     pub pilots: Option<Pilots>,
+    /// The pilot that held, flown as `plan` with its frames kept: the run, made already
+    /// ([`Rehearsal::replay`] hands it to the sink).
+    pub rehearsal: Option<Rehearsal>,
 }
 
 impl Planned {
@@ -79,37 +83,31 @@ pub fn plan_scene(
         tolerance: request.tolerance,
         tip_bound: TipBound::FirstOrder,
     };
-    let (mut config, choice, pilots) = match request.tolerance {
+    let (mut config, choice, mut pilots) = match request.tolerance {
         None => (asked, None, None),
         Some(eps) => {
             // `--tolerance EPS` for this scene, this run's duration and memory: never its
             // frames, so that where and how often it is drawn changes nothing it models.
             let memory = request.limits.memory();
+            // A pilot of a single method's run flies as the run its choice would make, so
+            // that the one that holds is not flown again.
+            let rehearse = |choice: &Choice| {
+                let plan = chosen(&asked, request, choice).validate().ok()?;
+                Rehearsal::fits(&plan).then_some(plan)
+            };
+            let rehearse: Rehearse<'_> = match compares {
+                true => &|_| None,
+                false => &rehearse,
+            };
+            let duration = request.duration;
             let (choice, pilots) =
-                tolerance::choose_telling(eps, &scene, request.duration, memory, before_pilots)?;
-            // A loose tolerance may choose a step longer than the default frame
-            // interval: then a frame at every step the estimate's shadow shares, unless
-            // --log-rate asked for more (never more than a frame a step: below).
-            let shared = 1.0 / (choice.dt * crate::run::estimate::STRIDE as f64);
-            let log_rate = match request.log_rate_asked {
-                true => request.log_rate,
-                false => asked.log_rate.min(shared),
-            };
-            let chosen = RunConfig {
-                method: choice.method,
-                segments: choice.segments,
-                dt: Some(choice.dt),
-                log_rate,
-                tip_bound: choice.tip_bound,
-                ..asked
-            };
-            (chosen, Some(choice), Some(pilots))
+                tolerance::choose_telling(eps, &scene, duration, memory, rehearse, before_pilots)?;
+            (chosen(&asked, request, &choice), Some(choice), Some(pilots))
         }
     };
-    // A step the user did not set (the default, or the one --tolerance chose) does not
-    // refuse the frames they asked for: past its rate, a frame at every step (the frames
-    // fall on the steps: the step does not follow the frames).
-    let step_not_set = choice.is_some() || (request.dt.is_none() && !compares);
+    // A step the user did not set (the default) does not refuse the frames they asked for:
+    // past its rate, a frame at every step, as for a step --tolerance chose ([`chosen`]).
+    let step_not_set = request.dt.is_none() && !compares;
     let steps = 1.0 / config.step();
     if step_not_set && steps.is_finite() && steps > 0.0 {
         config.log_rate = config.log_rate.min(steps);
@@ -134,10 +132,134 @@ pub fn plan_scene(
         .iter()
         .map(|&m| lane(m))
         .collect::<Result<_, _>>()?;
+    // The pilot that held, flown as this very run (a check: the plan it flew is this one).
+    let rehearsal = pilots
+        .as_mut()
+        .and_then(|p| p.rehearsal.take())
+        .filter(|r| r.plan == plan);
     Ok(Planned {
         plan,
         choice,
         others,
         pilots,
+        rehearsal,
     })
+}
+
+/// The run `choice` makes of what was `asked`: its method, N, k and tip bound, with a frame at
+/// every step the estimate's shadow shares where a loose tolerance chose a step longer than the
+/// default frame interval, unless --log-rate asked for more, and never more than a frame a step
+/// (the frames fall on the steps: the step does not follow the frames).
+fn chosen(asked: &RunConfig, request: &RunRequest, choice: &Choice) -> RunConfig {
+    let shared = 1.0 / (choice.dt * crate::run::estimate::STRIDE as f64);
+    let log_rate = match request.log_rate_asked {
+        true => request.log_rate,
+        false => asked.log_rate.min(shared),
+    };
+    RunConfig {
+        method: choice.method,
+        segments: choice.segments,
+        dt: Some(choice.dt),
+        log_rate: log_rate.min(1.0 / choice.dt),
+        tip_bound: choice.tip_bound,
+        ..asked.clone()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plan::pilot::Basis;
+    use crate::run::pipeline;
+    use std::sync::atomic::AtomicBool;
+
+    /// `rope run --scene mode --tolerance EPS --duration 3` at `log_rate` frames a unit (asked),
+    /// side by side with `others` where there are some.
+    fn mode_request(eps: f64, log_rate: f64, others: Vec<MethodKind>) -> RunRequest {
+        RunRequest {
+            method: MethodKind::Chain,
+            others,
+            segments: 100,
+            dt: None,
+            duration: 3.0,
+            log_rate,
+            log_rate_asked: true,
+            realtime: None,
+            allow_unstable: false,
+            limits: Limits::default(),
+            error_estimate: true,
+            tolerance: Some(eps),
+        }
+    }
+
+    const MODE_1: Scene = Scene::Mode {
+        number: 1,
+        amplitude: 0.05,
+    };
+
+    #[test]
+    fn a_pilot_that_holds_is_the_run_frame_for_frame_and_is_not_flown_again() {
+        // Mode 1 at 1e-3 is held by the chain's first pilot (N = 16); at 600 frames a unit
+        // asked, a frame at each of its steps.
+        for log_rate in [10.0, 600.0] {
+            let planned = plan_scene(&mode_request(1e-3, log_rate, vec![]), MODE_1, |_| {})
+                .expect("mode 1 at 1e-3 is served");
+            assert_eq!(planned.pilots.as_ref().map(|p| p.basis), Some(Basis::Held));
+            let rehearsal = planned
+                .rehearsal
+                .expect("the held pilot was flown as the run");
+            assert_eq!(rehearsal.plan, planned.plan);
+            // A second flight of the plan makes the same frames, bit for bit.
+            let (frames, summary) = pipeline::run_in_memory(&planned.plan).unwrap();
+            assert_eq!(frames.len(), rehearsal.frames.len());
+            assert!(frames.len() > 30, "{} frames", frames.len());
+            for (again, kept) in frames.iter().zip(&rehearsal.frames) {
+                assert_eq!(again.time, kept.time);
+                assert_eq!(again.nodes, kept.nodes);
+                assert_eq!(again.tension, kept.tension);
+                assert_eq!(again.error_estimate, kept.error_estimate);
+            }
+            let tips = [summary.tip, rehearsal.summary.tip].map(|t| (t.x, t.y));
+            assert_eq!(tips[0], tips[1]);
+            assert_eq!(summary.tolerance_met, Some(true));
+            assert_eq!(rehearsal.summary.tolerance_met, Some(true));
+            // Handed to a sink: every frame, in order, and the run's summary.
+            let (mut tx, rx) = crossbeam_channel::unbounded();
+            let replayed = rehearsal.replay(&mut tx, &AtomicBool::new(false), &|_| {});
+            drop(tx);
+            let times: Vec<f64> = rx.iter().map(|f| f.time).collect();
+            let kept: Vec<f64> = rehearsal.frames.iter().map(|f| f.time).collect();
+            assert_eq!(times, kept);
+            assert_eq!(replayed.frames_logged, kept.len() as u64);
+            assert_eq!(replayed.status, crate::run::Status::Ok);
+            assert!(replayed.recording_error.is_none());
+        }
+    }
+
+    #[test]
+    fn a_replay_stopped_before_it_starts_delivers_nothing_and_says_it_was_interrupted() {
+        let planned = plan_scene(&mode_request(1e-3, 60.0, vec![]), MODE_1, |_| {}).unwrap();
+        let rehearsal = planned
+            .rehearsal
+            .expect("the held pilot was flown as the run");
+        let (mut tx, rx) = crossbeam_channel::unbounded();
+        let replayed = rehearsal.replay(&mut tx, &AtomicBool::new(true), &|_| {});
+        drop(tx);
+        assert_eq!(rx.iter().count(), 0);
+        assert_eq!(replayed.frames_logged, 0);
+        assert_eq!(replayed.status, crate::run::Status::Interrupted);
+    }
+
+    #[test]
+    fn runs_side_by_side_or_chosen_by_a_model_are_flown_as_before() {
+        // Side by side, the pilot that holds is not the run (the lanes fly together).
+        let side = mode_request(1e-3, 30.0, vec![MethodKind::Midpoint]);
+        let planned = plan_scene(&side, MODE_1, |_| {}).unwrap();
+        assert_eq!(planned.pilots.as_ref().map(|p| p.basis), Some(Basis::Held));
+        assert!(planned.rehearsal.is_none());
+        // At 1e-4 no pilot holds: the run chosen by the pilots' model is flown.
+        let planned = plan_scene(&mode_request(1e-4, 60.0, vec![]), MODE_1, |_| {}).unwrap();
+        assert_ne!(planned.pilots.as_ref().map(|p| p.basis), Some(Basis::Held));
+        assert!(planned.rehearsal.is_none());
+    }
 }

@@ -7,7 +7,7 @@
 
 use super::choice::{self, Choice};
 use super::committed::{Committed, Source};
-use super::pilot::{self, Basis, FOLD_RODS_ACROSS_GAP, FirstPilot, Pilots, levels};
+use super::pilot::{self, Basis, FOLD_RODS_ACROSS_GAP, FirstPilot, Pilots, Rehearse, levels};
 use crate::error::ConfigError;
 use crate::methods::MethodKind;
 use crate::model::{Scene, fold};
@@ -31,19 +31,21 @@ pub fn choose(
     duration: f64,
     memory: u64,
 ) -> Result<(Choice, Pilots), ConfigError> {
-    choose_telling(eps, scene, duration, memory, |_| {})
+    choose_telling(eps, scene, duration, memory, &|_| None, |_| {})
 }
 
-/// As [`choose`], telling `before_flying` of the first pilot just before it flies, once the
-/// request has passed every refusal (not at all where no pilot flies): a run says it where the
-/// pilots take a while (a
-/// narrow fold's pilots start at sixteen rods across its gap: from a gap of 0.005, N = 3 200,
-/// 12 s of CPU to t = 1).
+/// As [`choose`], each pilot flown as the run its choice would make where `rehearse` gives
+/// that run's plan (a pilot that holds is then that run, kept in [`Pilots::rehearsal`]), and
+/// telling `before_flying` of the first pilot just before it flies, once the request has passed
+/// every refusal (not at all where no pilot flies): a run says it where the pilots take a while
+/// (a narrow fold's pilots start at sixteen rods across its gap: from a gap of 0.005,
+/// N = 3 200, 12 s of CPU to t = 1).
 pub fn choose_telling(
     eps: f64,
     scene: &Scene,
     duration: f64,
     memory: u64,
+    rehearse: Rehearse<'_>,
     before_flying: impl FnOnce(FirstPilot),
 ) -> Result<(Choice, Pilots), ConfigError> {
     scene.validate()?;
@@ -95,8 +97,15 @@ pub fn choose_telling(
     // The committed models, looked up once: the choice and the pilots' climb read them.
     let models = Committed::look_up(scene, duration, eps);
     let seconds = |c: &Choice| cost_of(c.method, c.segments, c.dt).seconds;
-    let (flown, best) = pilot::climb(eps, scene, duration, &models, seconds, fits, before_flying);
-    if let Some(best) = best {
+    let asked = pilot::Asked {
+        eps,
+        scene,
+        duration,
+        models: &models,
+    };
+    let climbed = pilot::climb(asked, seconds, fits, rehearse, before_flying);
+    let (flown, rehearsal) = (climbed.pilots, climbed.rehearsal);
+    if let Some(best) = climbed.best {
         let from_atlas = models.source(best.choice.method) == Source::Atlas;
         let basis = match best.basis {
             Basis::Committed | Basis::CommittedTighter | Basis::CommittedOverPilots
@@ -110,7 +119,14 @@ pub fn choose_telling(
             tip_bound: pilot::tip_bound(scene, &flown, best.choice.method),
             ..best.choice
         };
-        return Ok((choice, Pilots { flown, basis }));
+        return Ok((
+            choice,
+            Pilots {
+                flown,
+                basis,
+                rehearsal,
+            },
+        ));
     }
     let best =
         choice::tightest(duration, scene, fits).ok_or(ConfigError::ToleranceNoMethod(eps))?;

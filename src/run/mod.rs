@@ -4,6 +4,7 @@
 //! can no longer be trusted ([`trust`]), the live error estimate from a shadow at half the
 //! segments ([`estimate`]), the two-thread pipeline that hands the frames to a
 //! [`sink::FrameSink`] ([`pipeline`]), several methods side by side in lockstep ([`lanes`]),
+//! a run flown before it was asked for, its frames kept ([`rehearsal`]),
 //! what a run reports ([`summary`]; with the program, `progress`), and a whole run in one
 //! call ([`whole`]). Nothing here knows where frames end up.
 pub mod config;
@@ -15,6 +16,7 @@ pub mod pipeline;
 pub mod probe;
 #[cfg(feature = "app")]
 pub mod progress;
+pub mod rehearsal;
 mod shadow_steps;
 pub mod shake_figures;
 pub mod simulate;

@@ -261,7 +261,7 @@ pub(super) fn simulate_and_send(
 }
 
 /// Sleeps until `target_seconds` after `started`, waking early when `stop` is set.
-fn pace(started: Instant, target_seconds: f64, stop: &AtomicBool) {
+pub(super) fn pace(started: Instant, target_seconds: f64, stop: &AtomicBool) {
     let target = started + Duration::from_secs_f64(target_seconds);
     while !stop.load(Ordering::Relaxed) {
         let now = Instant::now();

@@ -194,6 +194,7 @@ pub fn announce(asked: &Asked, plans: &[Planned]) -> Vec<Notice> {
         plan,
         choice,
         pilots,
+        rehearsal,
         ..
     } in plans
     {
@@ -214,10 +215,14 @@ pub fn announce(asked: &Asked, plans: &[Planned]) -> Vec<Notice> {
                 pilot_notices::pilot_lines(pilots, plan.duration),
             ));
         }
+        let verified = match rehearsal {
+            Some(_) => "that pilot was this very run, its frames kept: it is not flown again",
+            None => "the live estimate will say if it holds",
+        };
         notices.push(Notice::new(
             Topic::ToleranceChoice,
             format!(
-                "rope: tolerance {:e}{scene}: chose the {} method, N = {}, k = {}; predicted tip error at most {:.1e}, predicted cost {:.2e} CPU s with its frames and the estimate's shadow ({basis}; the live estimate will say if it holds)",
+                "rope: tolerance {:e}{scene}: chose the {} method, N = {}, k = {}; predicted tip error at most {:.1e}, predicted cost {:.2e} CPU s with its frames and the estimate's shadow ({basis}; {verified})",
                 asked.tolerance.unwrap_or_default(),
                 choice.method,
                 choice.segments,

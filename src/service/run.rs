@@ -297,7 +297,10 @@ fn run_passes(
                     progress.suspend(|| session.listener.tell(notice));
                 }
             };
-            let summary = if planned.others.is_empty() {
+            let summary = if let Some(rehearsal) = &planned.rehearsal {
+                // The pilot that held is this run: handed over, not flown again.
+                rehearsal.replay(sinks, stop, &on_frame)
+            } else if planned.others.is_empty() {
                 crate::run::pipeline::run(plan, sinks, stop, &on_frame)?
             } else {
                 let lanes = crate::run::lanes::run(&planned.lanes(), sinks, stop, &on_frame)?;

@@ -41,6 +41,7 @@ pub mod tip_reference;
 pub mod tolerance_chart;
 pub mod tolerance_check;
 pub mod tolerance_csv;
+pub mod tolerance_table;
 pub mod trajectory;
 
 pub use grid::{Row, Spec, Status, fit, run_cell, run_grid, shape};
@@ -350,7 +351,7 @@ pub fn execute_tolerance_check(
     let csv = out.join("references.csv");
     tip_reference::write_references(&csv, &checked.references, spec.duration)
         .with_context(|| format!("writing {}", csv.display()))?;
-    let markdown = tolerance_check::markdown(spec, &checked, command);
+    let markdown = tolerance_table::markdown(spec, &checked, command);
     write(&out.join("tolerance_check.md"), &markdown)?;
     let table = out.join("tolerance_check.csv");
     tolerance_csv::write(&checked.cells, &table)

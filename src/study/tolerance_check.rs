@@ -8,12 +8,14 @@
 use super::read_reference::{CheckReference, ReadReference};
 pub use super::tip_reference::JUDGE_RATE;
 pub use super::tip_reference::LOG_RATE;
-use super::tip_reference::{ConvergedTip, REFERENCE_RATE, REFERENCE_ROWS_RATE, TipReference};
+use super::tip_reference::{ConvergedTip, TipReference};
 use super::trajectory::{Trajectory, frame_times};
 use crate::methods::{MethodKind, whole_division};
 use crate::model::Scene;
 use crate::plan::atlas::ATLAS_ANGLES;
-use crate::plan::{choice, pilot, tolerance};
+use crate::plan::runs::{self, RunRequest};
+use crate::plan::{choice, pilot};
+use crate::run::cost::Limits;
 use crate::run::estimate::TipBound;
 use crate::run::simulate::{self, Options};
 use rayon::prelude::*;
@@ -287,6 +289,28 @@ pub fn measure(
     })
 }
 
+/// What `rope run --tolerance EPS --duration D --log-rate LOG_RATE` asks of a scene, within
+/// any memory.
+fn request(eps: f64, duration: f64) -> RunRequest {
+    RunRequest {
+        method: MethodKind::Chain, // the choice's, with a tolerance
+        others: Vec::new(),
+        segments: 100,
+        dt: None,
+        duration,
+        log_rate: LOG_RATE,
+        log_rate_asked: true,
+        realtime: None,
+        allow_unstable: false,
+        limits: Limits {
+            max_memory: Some(u64::MAX),
+            yes: true,
+        },
+        error_estimate: true,
+        tolerance: Some(eps),
+    }
+}
+
 /// Runs under this many wall seconds are timed again ([`fastest`]).
 pub const RETIMED_BELOW: f64 = 0.05;
 
@@ -479,16 +503,24 @@ pub fn check(
                 cells.push(cell);
                 continue;
             }
-            let (seconds, chosen) =
-                fastest(|| tolerance::choose(eps, scene, spec.duration, u64::MAX));
-            match chosen {
-                Ok((choice, flown)) => {
+            // Planned as `rope run --tolerance EPS` plans it, frames at [`LOG_RATE`]: its
+            // pilots may fly as the run, and the one that holds is then not flown again.
+            let request = request(eps, spec.duration);
+            let (seconds, planned) = fastest(|| runs::plan_scene(&request, *scene, |_| {}));
+            match planned.map(|p| (p.choice.zip(p.pilots), p.rehearsal.is_some())) {
+                Ok((Some((choice, flown)), rehearsed)) => {
                     cell.pilot_seconds = seconds;
                     cell.basis = Some(flown.basis);
                     let (m, n, dt) = (choice.method, choice.segments, choice.dt);
                     let bound = Some(choice.tip_bound);
                     cell.chosen = measure(m, scene, n, dt, spec.duration, bound, reference);
+                    if let (Some(chosen), true) = (&mut cell.chosen, rehearsed) {
+                        // The run was the pilot that held: its CPU is in the pilots'.
+                        chosen.seconds = 0.0;
+                    }
                 }
+                // (A request with a tolerance is always planned by it.)
+                Ok((None, _)) => cell.skipped = Some("no choice was made".to_owned()),
                 Err(err) => cell.skipped = Some(err.to_string()),
             }
             tick();
@@ -496,89 +528,4 @@ pub fn check(
         }
     }
     Ok(Checked { cells, references })
-}
-
-/// The check as Markdown: the references, then a row per scene and tolerance.
-pub fn markdown(spec: &CheckSpec, checked: &Checked, command: &str) -> String {
-    let mut text = format!(
-        "# `--tolerance` against the truth\n\n`{command}`\n\n\
-         For each scene and EPS, the run `rope run --tolerance EPS --duration {}` makes (its \
-         pilots, then the chosen method, N and k with its shadow at N/2) is compared at every \
-         1/{JUDGE_RATE} of a time unit (its tip kept at every step, whatever its frames) with \
-         the tip of a reference: the {} method (the graded \
-         rods where their end rods do not spin on, a release from 20° up: their tip converges \
-         faster through the whip) at N/2, N and 2N, extrapolated in N at the order the three show, N doubled from {} (up to {}, \
-         and on up to {} where the order the runs show, or 2 if less, would reach it) until the \
-         reference's own error is at most {REFERENCE_MARGIN} × the smallest EPS. Its \
-         CPU (one thread, pilots included) is set beside the cheapest run of the grid (every \
-         method that can start, at N = {:?}, each at its default step and at its tolerance step \
-         where that is another, without a shadow, up to the N where one of its runs holds the \
-         smallest EPS and none costs less than the cheapest that holds; where none holds the smallest EPS the \
-         reference can judge, on at N = {:?} up to the first N where one does) whose largest \
-         error also holds EPS. A \
-         tolerance is checked only where the reference's own error at every 1/{JUDGE_RATE} is \
-         at most {REFERENCE_MARGIN} × EPS. Where `--references` gave a scene's reference, the \
-         one of least own error is read instead of computed, at its rows: the method column \
-         names its file. The verdict is what the \
-         run's exit status would say (4 where its live estimate, at every step it shares with \
-         its shadow, passed EPS) against the truth: a miss it did not say, or a false alarm \
-         where the truth held within EPS/2, is a verdict that lied.\n\n## References\n\n\
-         Each reference's own error is measured: how far its tip moves when it is extrapolated \
-         from N and 2N rather than from N/2 and N, at every 1/{JUDGE_RATE} of a time unit (the \
-         instants the choices are judged at), and at every 1/{REFERENCE_RATE}. `references.csv` gives each reference's tip and own error at every \
-         1/{REFERENCE_ROWS_RATE} (every frame and every 1/{REFERENCE_RATE}).\n\n\
-         | scene | method | N (runs at N/2, N, 2N) | observed order | own error at every 1/{JUDGE_RATE} | at every 1/{REFERENCE_RATE} |\n|---|---|---|---|---|---|\n",
-        spec.duration,
-        MethodKind::REFERENCE,
-        spec.reference_segments,
-        spec.reference_segments_max,
-        spec.reference_segments_reach,
-        spec.grid,
-        spec.grid_beyond
-    );
-    for r in &checked.references {
-        let (method, segments, order) = r.made_of();
-        text += &format!(
-            "| {} | {method} | {segments} | {order} | {:.1e} | {:.1e} |\n",
-            r.scene(),
-            r.own_error(),
-            r.own_error_over(spec.duration, REFERENCE_RATE)
-        );
-    }
-    text += "\n## Choices\n\n| scene | EPS | chosen (from) | true worst error | held | live estimate's bound at worst | verdict | CPU s (pilots + run) | grid's cheapest holding EPS | its worst error | its CPU s | ratio | notes |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-    let run = |m: &Measured| format!("{} N = {}, k = {:.1e}", m.method, m.segments, m.dt);
-    for c in &checked.cells {
-        let chosen = c.chosen.as_ref();
-        let cheapest = c.cheapest.as_ref();
-        text += &format!(
-            "| {} | {:.0e} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
-            c.scene,
-            c.tolerance,
-            chosen.map_or("–".to_owned(), |m| format!(
-                "{} ({})",
-                run(m),
-                c.basis.map_or("–", pilot::Basis::label)
-            )),
-            chosen.map_or("–".to_owned(), |m| format!("{:.1e}", m.worst)),
-            match c.held() {
-                Some(true) => "yes",
-                Some(false) => "**no**",
-                None => "–",
-            },
-            chosen
-                .and_then(|m| m.estimate)
-                .map_or("–".to_owned(), |e| format!("{e:.1e}")),
-            c.verdict().map_or("–", EstimateVerdict::label),
-            chosen.map_or("–".to_owned(), |m| format!(
-                "{:.3} + {:.3}",
-                c.pilot_seconds, m.seconds
-            )),
-            cheapest.map_or("none in the grid".to_owned(), run),
-            cheapest.map_or("–".to_owned(), |m| format!("{:.1e}", m.worst)),
-            cheapest.map_or("–".to_owned(), |m| format!("{:.3}", m.seconds)),
-            c.cpu_ratio().map_or("–".to_owned(), |r| format!("{r:.1}")),
-            c.skipped.as_deref().unwrap_or(""),
-        );
-    }
-    text
 }
