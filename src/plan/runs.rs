@@ -132,11 +132,12 @@ pub fn plan_scene(
         .iter()
         .map(|&m| lane(m))
         .collect::<Result<_, _>>()?;
-    // The pilot that held, flown as this very run (a check: the plan it flew is this one).
+    // The pilot that held, flown as this very run (a check: the plan it flew is this one, but
+    // perhaps for the tip bound its levels showed once it had flown).
     let rehearsal = pilots
         .as_mut()
         .and_then(|p| p.rehearsal.take())
-        .filter(|r| r.plan == plan);
+        .and_then(|r| r.held_to(&plan));
     Ok(Planned {
         plan,
         choice,
@@ -234,6 +235,29 @@ mod tests {
             assert_eq!(replayed.status, crate::run::Status::Ok);
             assert!(replayed.recording_error.is_none());
         }
+    }
+
+    #[test]
+    fn a_pilot_held_at_its_second_level_is_the_run_held_to_the_order_its_levels_show() {
+        // Mode 1 at 1e-4: the chain's pilot at N = 32 holds; the run's bound is at the order
+        // from N = 16 to 32, known once it flew. The kept run, held to it, says what a second
+        // flight at that bound says.
+        let planned = plan_scene(&mode_request(1e-4, 60.0, vec![]), MODE_1, |_| {}).unwrap();
+        assert_eq!(planned.pilots.as_ref().map(|p| p.basis), Some(Basis::Held));
+        assert!(matches!(planned.plan.tip_bound, TipBound::Observed { .. }));
+        let rehearsal = planned
+            .rehearsal
+            .expect("the held pilot was flown as the run");
+        assert_eq!(rehearsal.plan, planned.plan);
+        let (frames, again) = pipeline::run_in_memory(&planned.plan).unwrap();
+        assert_eq!(frames.len(), rehearsal.frames.len());
+        let kept = &rehearsal.summary;
+        assert_eq!(kept.tolerance_bound, again.tolerance_bound);
+        assert_eq!(kept.tolerance_met, Some(true));
+        assert_eq!(again.tolerance_met, Some(true));
+        let bound = |s: &crate::run::Summary| s.error_estimate.as_ref().unwrap().max_tip_bound;
+        let (kept, again) = (bound(kept), bound(&again));
+        assert!((kept - again).abs() <= 1e-12 * again, "{kept:e} {again:e}");
     }
 
     #[test]

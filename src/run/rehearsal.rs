@@ -6,6 +6,7 @@
 //! cheapest run that holds it, its pilots included (`docs/measurements.md`).
 
 use super::config::RunPlan;
+use super::estimate::{Shadow, TipBound};
 use super::pipeline::{self, BATCH_FRAMES, Delivery};
 use super::simulate::Frame;
 use super::sink::FrameSink;
@@ -55,6 +56,34 @@ impl Rehearsal {
             frames,
             summary,
         })
+    }
+
+    /// This run as `plan`, where `plan` differs from it in its tip bound alone and the
+    /// rehearsal, flown at the first-order bound, held its tolerance throughout: every other
+    /// bound reads the same estimates at no more than the first order's
+    /// ([`TipBound::of_first_order`]), so it holds there too, and only the summary's largest
+    /// bound and its name change (a mode's pilot that holds at its second level is held to the
+    /// order its two levels show, which is known only once it has flown). `None` otherwise.
+    pub fn held_to(mut self, plan: &RunPlan) -> Option<Self> {
+        if self.plan == *plan {
+            return Some(self);
+        }
+        let rebound = RunPlan {
+            tip_bound: plan.tip_bound,
+            ..self.plan.clone()
+        };
+        let held = self.summary.tolerance_met == Some(true);
+        if rebound != *plan || self.plan.tip_bound != TipBound::FirstOrder || !held {
+            return None;
+        }
+        let ratio = plan.segments as f64 / Shadow::segments_of(plan.segments) as f64;
+        let scale = plan.tip_bound.of_first_order(ratio);
+        if let Some(estimate) = self.summary.error_estimate.as_mut() {
+            estimate.max_tip_bound *= scale;
+        }
+        self.summary.tolerance_bound = Some(plan.tip_bound);
+        self.plan = rebound;
+        Some(self)
     }
 
     /// Hands the kept frames to `sink` as [`pipeline::run`] hands a run's (`progress` hearing
