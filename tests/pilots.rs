@@ -319,33 +319,6 @@ fn a_pilot_that_cannot_save_what_it_costs_does_not_fly() {
 }
 
 #[test]
-fn a_pilot_likely_to_hold_flies_where_it_costs_less_than_the_best_run_for_it_is_that_run() {
-    // Mode 1 at 1e-4: the rods' estimate at N = 16, 4.9e-5, is within EPS at their nominal
-    // order, so N = 32 is likely to hold. The pilots so far and that pilot cost more than the
-    // run the pilots' model asks (N = 36), but if it holds it is the run, and it costs less.
-    // It flies, holds, and is chosen.
-    let mode = Scene::Mode {
-        number: 1,
-        amplitude: 0.05,
-    };
-    let eps = 1e-4;
-    let (choice, pilots) = tolerance::choose(eps, &mode, 3.0, u64::MAX).unwrap();
-    assert_eq!(pilots.basis, pilot::Basis::Held, "{pilots:?}");
-    assert_eq!((choice.method, choice.segments), (MethodKind::Chain, 32));
-    // Against the chain at N = 100, 200, 400 extrapolated, at every step: it holds, and says so.
-    let reference = TipReference::compute(&mode, 200, 3.0).unwrap();
-    assert!(reference.own_error <= eps / 10.0, "{}", reference.own_error);
-    let (m, n, dt) = (choice.method, choice.segments, choice.dt);
-    let run = measure(m, &mode, n, dt, 3.0, Some(choice.tip_bound), &reference).unwrap();
-    let bound = run.estimate.unwrap();
-    eprintln!(
-        "mode 1 at 1e-4: N = {n}, worst {:.2e}, bound {bound:.2e}",
-        run.worst
-    );
-    assert!(run.worst <= eps && bound <= eps, "{run:?}");
-}
-
-#[test]
 fn methods_of_one_discretization_fly_one_pilot_the_cheapest() {
     // The chain, rattle and midpoint are the same rods: at their tolerance steps their tip
     // errors are the rods' own, so only the cheapest of them, the chain, flies; the others

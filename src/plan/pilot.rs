@@ -10,9 +10,7 @@
 //! it has flown, and the cheapest run those models (or the committed ones) allow is the best
 //! known so far; the climb also stops where the next pilot would take the pilots' cost past
 //! that run's, and passes over a pilot that could not save its own cost: a scene that needs few
-//! segments pays for little more than one cheap run twice. A pilot flies as the run its choice
-//! would make, so the one that holds is not flown again; and one likely to hold (by the level
-//! below it) flies wherever it costs less than the best known run, which it then is.
+//! segments pays for little more than one cheap run twice.
 
 use super::choice::{self, Choice};
 use super::committed::Committed;
@@ -400,22 +398,15 @@ pub(super) fn climb(
                 continue;
             }
             let cost = level_seconds(pilot.method, segments, duration);
-            // A pilot likely to hold, by the level below it, is the run if it does (flown as
-            // the run, [`Rehearse`]; counted so wherever it is flown, so that the choice never
-            // depends on the frames): what the pilots spent is spent either way, and it is
-            // worth flying where it costs less than the best known run.
-            let likely_held = !pilot.measured.is_empty() && pilot.fewest(eps, 1) <= segments;
-            let at_stake = if likely_held { cost } else { spent + cost };
-            if best.is_some_and(|b| at_stake > b.seconds) {
+            if best.is_some_and(|b| spent + cost > b.seconds) {
                 return Climbed::to(pilots, best);
             }
             // A pilot that cannot save what it costs does not fly: where the best known is
             // measured (not a committed model outside its window), the most it could save is
-            // that run's cost less its method's likeliest run ([`Pilot::fewest`]); one likely
-            // to hold saves the best's cost less its own, as the check above asks.
+            // that run's cost less its method's likeliest run ([`Pilot::fewest`]).
             let trusted =
                 best.filter(|b| b.basis != Basis::Committed || models.covers(b.choice.method));
-            if let Some(b) = trusted.filter(|_| !likely_held) {
+            if let Some(b) = trusted {
                 let mut fewest = pilot.fewest(eps, levels[0]);
                 if models.covers(pilot.method) {
                     // Its committed model may rule once it has flown ([`ruling_model`]).

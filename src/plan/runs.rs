@@ -281,13 +281,8 @@ mod tests {
         let planned = plan_scene(&side, MODE_1, |_| {}).unwrap();
         assert_eq!(planned.pilots.as_ref().map(|p| p.basis), Some(Basis::Held));
         assert!(planned.rehearsal.is_none());
-        // Mode 2 at 1e-3: no pilot holds (N = 32 reads 4.7e-4, bound 1.2e-3), and the run
-        // chosen by the pilots' model is flown.
-        let mode_2 = Scene::Mode {
-            number: 2,
-            amplitude: 0.05,
-        };
-        let planned = plan_scene(&mode_request(1e-3, 60.0, vec![]), mode_2, |_| {}).unwrap();
+        // At 1e-4 no pilot holds: the run chosen by the pilots' model is flown.
+        let planned = plan_scene(&mode_request(1e-4, 60.0, vec![]), MODE_1, |_| {}).unwrap();
         assert_ne!(planned.pilots.as_ref().map(|p| p.basis), Some(Basis::Held));
         assert!(planned.rehearsal.is_none());
     }
