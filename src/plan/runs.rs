@@ -238,29 +238,6 @@ mod tests {
     }
 
     #[test]
-    fn a_pilot_held_at_its_second_level_is_the_run_held_to_the_order_its_levels_show() {
-        // Mode 1 at 1e-4: the chain's pilot at N = 32 holds; the run's bound is at the order
-        // from N = 16 to 32, known once it flew. The kept run, held to it, says what a second
-        // flight at that bound says.
-        let planned = plan_scene(&mode_request(1e-4, 60.0, vec![]), MODE_1, |_| {}).unwrap();
-        assert_eq!(planned.pilots.as_ref().map(|p| p.basis), Some(Basis::Held));
-        assert!(matches!(planned.plan.tip_bound, TipBound::Observed { .. }));
-        let rehearsal = planned
-            .rehearsal
-            .expect("the held pilot was flown as the run");
-        assert_eq!(rehearsal.plan, planned.plan);
-        let (frames, again) = pipeline::run_in_memory(&planned.plan).unwrap();
-        assert_eq!(frames.len(), rehearsal.frames.len());
-        let kept = &rehearsal.summary;
-        assert_eq!(kept.tolerance_bound, again.tolerance_bound);
-        assert_eq!(kept.tolerance_met, Some(true));
-        assert_eq!(again.tolerance_met, Some(true));
-        let bound = |s: &crate::run::Summary| s.error_estimate.as_ref().unwrap().max_tip_bound;
-        let (kept, again) = (bound(kept), bound(&again));
-        assert!((kept - again).abs() <= 1e-12 * again, "{kept:e} {again:e}");
-    }
-
-    #[test]
     fn a_replay_stopped_before_it_starts_delivers_nothing_and_says_it_was_interrupted() {
         let planned = plan_scene(&mode_request(1e-3, 60.0, vec![]), MODE_1, |_| {}).unwrap();
         let rehearsal = planned

@@ -137,3 +137,64 @@ impl Rehearsal {
         summary
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::methods::MethodKind;
+    use crate::model::Scene;
+    use crate::run::RunConfig;
+
+    #[test]
+    fn a_run_kept_at_first_order_and_held_to_a_tighter_bound_says_what_a_flight_at_it_says() {
+        // Mode 1 at N = 32, as a mode's pilot at its second level flies: at the first-order
+        // bound, then held to the order its levels show.
+        let config = RunConfig {
+            method: MethodKind::Chain,
+            scene: Scene::Mode {
+                number: 1,
+                amplitude: 0.05,
+            },
+            segments: 32,
+            dt: Some(1.0 / 120.0),
+            duration: 3.0,
+            tolerance: Some(1e-4),
+            ..RunConfig::default()
+        };
+        let first = config.validate().unwrap();
+        let tip_bound = TipBound::Observed {
+            order: 1.7,
+            safety: 1.5,
+        };
+        let observed = RunConfig {
+            tip_bound,
+            ..config.clone()
+        }
+        .validate()
+        .unwrap();
+        let kept = Rehearsal::fly(first.clone()).unwrap();
+        let held = kept
+            .clone()
+            .held_to(&observed)
+            .expect("it held at first order");
+        let (frames, again) = pipeline::run_in_memory(&observed).unwrap();
+        assert_eq!(held.plan, observed);
+        assert_eq!(frames.len(), held.frames.len());
+        assert_eq!(held.summary.tolerance_bound, again.tolerance_bound);
+        assert_eq!(held.summary.tolerance_met, Some(true));
+        assert_eq!(again.tolerance_met, Some(true));
+        let bound = |s: &Summary| s.error_estimate.as_ref().unwrap().max_tip_bound;
+        let (held, again) = (bound(&held.summary), bound(&again));
+        assert!(held < bound(&kept.summary));
+        assert!((held - again).abs() <= 1e-12 * again, "{held:e} {again:e}");
+        // A plan that differs in anything else is another run.
+        let other = RunConfig {
+            segments: 30,
+            tip_bound,
+            ..config
+        }
+        .validate()
+        .unwrap();
+        assert!(kept.held_to(&other).is_none());
+    }
+}
