@@ -10,7 +10,7 @@ use super::estimate::{Shadow, TipBound};
 use super::pipeline::{self, BATCH_FRAMES, Delivery};
 use super::simulate::Frame;
 use super::sink::FrameSink;
-use super::summary::{Status, Summary};
+use super::summary::Summary;
 use crate::error::ConfigError;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
@@ -48,9 +48,14 @@ impl Rehearsal {
         frames * (plan.segments as f64 + 1.0) <= KEPT_NODE_FRAMES as f64
     }
 
-    /// Flies `plan` on this thread, every frame kept ([`pipeline::run_in_memory`]).
+    /// Flies `plan` on this thread, every frame kept ([`pipeline::run_in_memory`]), as fast as
+    /// it can: a run paced to the wall clock (`--realtime`) is paced when it is replayed.
     pub fn fly(plan: RunPlan) -> Result<Self, ConfigError> {
-        let (frames, summary) = pipeline::run_in_memory(&plan)?;
+        let unpaced = RunPlan {
+            realtime: None,
+            ..plan.clone()
+        };
+        let (frames, summary) = pipeline::run_in_memory(&unpaced)?;
         Ok(Self {
             plan,
             frames,
@@ -88,9 +93,9 @@ impl Rehearsal {
 
     /// Hands the kept frames to `sink` as [`pipeline::run`] hands a run's (`progress` hearing
     /// each first; paced to the wall clock where the plan asks it), and returns the summary:
-    /// the rehearsal's, its CPU the flight's, with the recording's error if the sink failed. A
-    /// `stop` set meanwhile ends the delivery: the summary then says the run was interrupted,
-    /// its frames counted up to there.
+    /// the rehearsal's, its CPU the flight's, with the recording's error if the sink failed.
+    /// The run is already made, so a `stop` set meanwhile ends the pacing, not the run: the
+    /// frames left are handed over at once, and nothing made is lost.
     pub fn replay<S: FrameSink>(
         &self,
         sink: &mut S,
@@ -109,12 +114,13 @@ impl Rehearsal {
             .err()
             .map(|e| Delivery::Begin(e).to_string());
         for frames in self.frames.chunks(batch) {
-            if failed.is_some() || stop.load(Ordering::Relaxed) {
+            if failed.is_some() {
                 break;
             }
             for frame in frames {
                 progress(frame);
-                if let Some(speed) = self.plan.realtime {
+                let paced = self.plan.realtime.filter(|_| !stop.load(Ordering::Relaxed));
+                if let Some(speed) = paced {
                     pipeline::pace(started, frame.time / speed, stop);
                 }
             }
@@ -128,9 +134,6 @@ impl Rehearsal {
             failed = failed.or(Some(Delivery::Flush(err).to_string()));
         }
         sink.end_run(summary.trusted.time, summary.trusted.step);
-        if delivered < self.frames.len() && failed.is_none() {
-            summary.status = Status::Interrupted;
-        }
         summary.frames_logged = delivered as u64;
         summary.recording_error = failed;
         summary.wall_seconds += started.elapsed().as_secs_f64();
