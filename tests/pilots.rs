@@ -319,12 +319,60 @@ fn a_pilot_that_cannot_save_what_it_costs_does_not_fly() {
 }
 
 #[test]
+fn a_releases_pilot_that_cannot_hold_where_the_atlas_rules_does_not_fly() {
+    // From 10° at 1e-2 the chain's own atlas row asks N = 50, and rules over anything its
+    // pilots could model: a pilot could change the choice only by holding at its level, and
+    // the row's error at N = 16 and 32 is past EPS. Those pilots cost 9.5 ms, more than the
+    // run chosen; they no longer fly, and the choice is the atlas's.
+    let eps = 1e-2;
+    let ten = Scene::Release { angle_deg: 10.0 };
+    let models = committed::Committed::look_up(&ten, 3.0, eps);
+    assert_eq!(models.source(MethodKind::Chain), committed::Source::Atlas);
+    for level in [16, 32] {
+        assert!(models.model(MethodKind::Chain).predict(level) > eps);
+        assert!(!models.may_hold(MethodKind::Chain, level, eps));
+    }
+    let (choice, pilots) = tolerance::choose(eps, &ten, 3.0, u64::MAX).unwrap();
+    let chain = pilots.flown.iter().find(|p| p.method == MethodKind::Chain);
+    assert!(!chain.unwrap().flew(), "{chain:?}");
+    let committed = choice::by_committed(eps, 3.0, &ten, |_, _, _| true).unwrap();
+    assert_eq!((choice.method, choice.segments), (MethodKind::Chain, 50));
+    assert_eq!(choice, committed);
+    // Where the atlas's error at a level is within EPS, though with its margin it asks for
+    // more, the pilot may hold there, and flies: from 72° at 3e-3 the graded rods' atlas asks
+    // N = 75, and their pilot flies at 64.
+    let seventy_two = Scene::Release { angle_deg: 72.0 };
+    let models = committed::Committed::look_up(&seventy_two, 3.0, 3e-3);
+    assert_eq!(models.source(MethodKind::Graded), committed::Source::Atlas);
+    assert!(models.model(MethodKind::Graded).segments_for(3e-3) > 64);
+    assert!(models.may_hold(MethodKind::Graded, 64, 3e-3));
+    let (_, pilots) = tolerance::choose(3e-3, &seventy_two, 3.0, u64::MAX).unwrap();
+    let graded = pilots.flown.iter().find(|p| p.method == MethodKind::Graded);
+    assert!(
+        graded.unwrap().measured.iter().any(|&(n, _)| n == 64),
+        "{graded:?}"
+    );
+    // The one law, the worst of six scenes, rules no pilot out: from 90°, hanging still, the
+    // seed's pilot holds at N = 16 where its law reads 0.2.
+    let ninety = Scene::Release { angle_deg: 90.0 };
+    let models = committed::Committed::look_up(&ninety, 3.0, eps);
+    assert!(law(MethodKind::Seed).predict(16) > 10.0 * eps);
+    assert!(models.may_hold(MethodKind::Seed, 16, eps));
+    let (choice, pilots) = tolerance::choose(eps, &ninety, 3.0, u64::MAX).unwrap();
+    assert_eq!(pilots.basis, pilot::Basis::Held);
+    assert_eq!((choice.method, choice.segments), (MethodKind::Seed, 16));
+}
+
+#[test]
 fn methods_of_one_discretization_fly_one_pilot_the_cheapest() {
     // The chain, rattle and midpoint are the same rods: at their tolerance steps their tip
     // errors are the rods' own, so only the cheapest of them, the chain, flies; the others
     // say whose pilots stand for theirs.
-    let thirty = Scene::Release { angle_deg: 30.0 };
-    let (_, pilots) = tolerance::choose(1e-3, &thirty, 3.0, u64::MAX).unwrap();
+    let mode = Scene::Mode {
+        number: 2,
+        amplitude: 0.05,
+    };
+    let (_, pilots) = tolerance::choose(1e-3, &mode, 3.0, u64::MAX).unwrap();
     let of = |m: MethodKind| pilots.flown.iter().find(|p| p.method == m).unwrap();
     assert!(of(MethodKind::Chain).flew() && of(MethodKind::Chain).measured_by.is_none());
     for m in [MethodKind::Rattle, MethodKind::Midpoint] {

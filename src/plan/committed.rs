@@ -5,6 +5,7 @@
 
 use super::atlas::Atlas;
 use super::error_model::{ErrorModel, law};
+
 use crate::methods::MethodKind;
 use crate::model::Scene;
 
@@ -64,6 +65,25 @@ impl Committed {
     /// over the run's own time.
     pub fn covers(&self, method: MethodKind) -> bool {
         self.measured_here && (self.source(method) == Source::Atlas || self.duration <= LAW_UNTIL)
+    }
+
+    /// Whether a pilot of `method` at `segments` could change the choice for `eps`. Where the
+    /// release atlas serves the method ([`Source::Atlas`]: it covers the run, and rules over the
+    /// pilots' own, [`Committed::floors_pilots`]), a pilot changes it only by holding EPS at its
+    /// own level, and its bound there is about [`SAFETY`](super::pilot::SAFETY) times the error there (the difference
+    /// to its shadow at N/2, times the safety), so it holds only where the error is within
+    /// `eps` / [`SAFETY`](super::pilot::SAFETY). It flies only where the committed model's error at `segments`,
+    /// without its margin, is within `eps`: where that model may overstate the scene's error by
+    /// up to [`SAFETY`](super::pilot::SAFETY) (an angle between two of the atlas's, whose error is below the larger
+    /// of theirs), the pilot still flies. Elsewhere every pilot may: the one law is the worst
+    /// of six scenes, and a scene far from it holds by its pilot (from 90°, hanging still, the
+    /// seed at N = 16, where its law reads 0.2).
+    ///
+    /// From 10° at 1e-2 the pilots took 9.5 ms, more than the 8.6 ms of the run the atlas
+    /// chose (the chain at N = 50, its own row's first that holds), and none could hold.
+    pub fn may_hold(&self, method: MethodKind, segments: usize, eps: f64) -> bool {
+        let ruled = self.source(method) == Source::Atlas && self.floors_pilots;
+        !ruled || self.model(method).predict(segments) <= eps
     }
 
     /// `method`'s committed model.

@@ -10,7 +10,9 @@
 //! it has flown, and the cheapest run those models (or the committed ones) allow is the best
 //! known so far; the climb also stops where the next pilot would take the pilots' cost past
 //! that run's, and passes over a pilot that could not save its own cost: a scene that needs few
-//! segments pays for little more than one cheap run twice.
+//! segments pays for little more than one cheap run twice. Where the release atlas rules a
+//! method's choice, its pilot could change it only by holding at its own level, and flies only
+//! where the atlas's error there is within EPS ([`Committed::may_hold`]).
 
 use super::choice::{self, Choice};
 use super::committed::Committed;
@@ -347,7 +349,8 @@ pub(super) struct Best {
 /// The ladder: each level for every method not ruled out, cheapest first, until a pilot holds
 /// `eps` by its own [`Pilot::bound`] (and its run `fits`), or the next pilot would take the
 /// pilots' predicted CPU past what the best choice known so far would cost (measuring must
-/// cost less than it can save); a pilot that could not save its own cost, the best less its
+/// cost less than it can save); a pilot that could not hold where the atlas rules
+/// ([`Committed::may_hold`]) is passed over, and so is one that could not save its own cost, the best less its
 /// method's likeliest run ([`Pilot::fewest`]), is passed over. That best is at first the
 /// committed models' choice ([`choice::from_committed`]), then after each pilot the cheapest
 /// that the pilots' own models allow, where cheaper: a scene whose pilots show it cheap stops
@@ -395,6 +398,9 @@ pub(super) fn climb(
         for i in 0..pilots.len() {
             let pilot = &mut pilots[i];
             if pilot.diverged.is_some() || pilot.measured_by.is_some() {
+                continue;
+            }
+            if !models.may_hold(pilot.method, segments, eps) {
                 continue;
             }
             let cost = level_seconds(pilot.method, segments, duration);
