@@ -36,7 +36,8 @@ fn tolerance_run(name: &str, flags: &[&str]) -> (serde_json::Value, String) {
 fn a_mode_is_modelled_with_what_it_needs_and_holds_the_tolerance() {
     let (s, said) = tolerance_run("pilot-mode", &["--scene", "mode", "--tolerance", "1e-4"]);
     // The committed models, fitted to the whip of the horizontal release, asked for thousands
-    // of segments here; the mode's own pilots ask for tens.
+    // of segments here; the mode's linear theory asks for tens (and the seed scheme, which it
+    // does not cover, flies a pilot).
     assert!(said.contains("tolerance pilots"), "{said}");
     let segments = s["segments"].as_u64().unwrap();
     assert!(segments <= 100, "N = {segments}");
@@ -59,10 +60,12 @@ fn a_mode_is_modelled_with_what_it_needs_and_holds_the_tolerance() {
 }
 
 #[test]
-fn a_modes_verdict_reads_its_error_at_the_order_its_pilots_saw_and_still_bounds_it() {
+fn a_modes_verdict_reads_its_error_at_its_own_order_and_still_bounds_it() {
     // Mode 2 from a tip amplitude of 0.05, the tolerance check's: at first order the live
     // bound read 2.4 and 2.6 times the truth, so runs that held at 0.50 and 0.42 of EPS exited
-    // 4. Judged at every step against the chain at N = 200, 400, 800, extrapolated.
+    // 4. Read at the order the mode theory works out (its pilots', past small swings), the
+    // bound is above the truth and flags a run only where the truth is above EPS/2. Judged at
+    // every step against the chain at N = 400, 800, 1 600, extrapolated.
     let mode = Scene::Mode {
         number: 2,
         amplitude: 0.05,
@@ -85,8 +88,17 @@ fn a_modes_verdict_reads_its_error_at_the_order_its_pilots_saw_and_still_bounds_
             "mode 2 at {eps:e}: {m} N = {n}, order {order:.2}: worst tip error {:.2e}, bound {bound:.2e}",
             run.worst
         );
-        // It holds, its bound is above the truth, and it says it held.
-        assert!(run.worst <= eps && run.worst <= bound && bound <= eps);
+        // It holds, its bound is above the truth, and a flag is never a false alarm below EPS/2.
+        assert!(
+            run.worst <= eps && run.worst <= bound,
+            "{:.2e} {bound:.2e}",
+            run.worst
+        );
+        assert!(
+            bound <= eps || run.worst > eps / 2.0,
+            "{:.2e} {bound:.2e}",
+            run.worst
+        );
     }
     // A release keeps the first order: its whip comes past the pilots' N.
     let thirty = Scene::Release { angle_deg: 30.0 };
@@ -224,7 +236,7 @@ fn a_pilot_that_already_holds_is_the_run_chosen_and_the_climb_stops_there() {
     // level above it is flown, by any method.
     let mode = Scene::Mode {
         number: 1,
-        amplitude: 0.05,
+        amplitude: 0.2,
     };
     let (choice, pilots) = tolerance::choose(1e-3, &mode, 3.0, u64::MAX).unwrap();
     assert_eq!(pilots.basis, pilot::Basis::Held);
@@ -297,12 +309,13 @@ fn pilots_stop_where_measuring_would_cost_more_than_the_committed_choice() {
 
 #[test]
 fn a_pilot_that_cannot_save_what_it_costs_does_not_fly() {
-    // Mode 2 at 1e-3: the seed scheme's estimate at N = 16, 3.9e-2, asks some 600 segments at
-    // its first order, a run far dearer than the rods' own model asks after their first
-    // level. Its next level could save nothing, and does not fly; the rods', which can, do.
+    // Mode 2 at 1e-3 (from a tip amplitude of 0.2, past the mode theory's small swings): the
+    // seed scheme's estimate at N = 16 asks thousands of segments at its first order, a run far
+    // dearer than the rods' own model asks after their first level. Its next level could save
+    // nothing, and does not fly; the rods', which can, do.
     let mode = Scene::Mode {
         number: 2,
-        amplitude: 0.05,
+        amplitude: 0.2,
     };
     let eps = 1e-3;
     let (choice, pilots) = tolerance::choose(eps, &mode, 3.0, u64::MAX).unwrap();
@@ -311,10 +324,7 @@ fn a_pilot_that_cannot_save_what_it_costs_does_not_fly() {
     assert!(seed.measured.iter().map(|&(n, _)| n).eq([16]), "{seed:?}");
     assert!(seed.fewest(eps, 16) > 10 * choice.segments, "{seed:?}");
     let chain = of(MethodKind::Chain);
-    assert!(
-        chain.measured.iter().map(|&(n, _)| n).eq([16, 32]),
-        "{chain:?}"
-    );
+    assert!(chain.measured.len() >= 2, "{chain:?}");
     assert_eq!(choice.method, MethodKind::Chain);
 }
 
@@ -370,7 +380,7 @@ fn methods_of_one_discretization_fly_one_pilot_the_cheapest() {
     // say whose pilots stand for theirs.
     let mode = Scene::Mode {
         number: 2,
-        amplitude: 0.05,
+        amplitude: 0.2,
     };
     let (_, pilots) = tolerance::choose(1e-3, &mode, 3.0, u64::MAX).unwrap();
     let of = |m: MethodKind| pilots.flown.iter().find(|p| p.method == m).unwrap();
@@ -392,10 +402,11 @@ fn methods_of_one_discretization_fly_one_pilot_the_cheapest() {
 fn a_scene_its_pilots_show_cheaper_is_run_from_their_model_and_holds() {
     // In mode 2 the pilots' estimates fall faster than first order: their own model asks for
     // tens of segments at 1e-3 where the committed models (fitted to the horizontal release's
-    // whip) ask for hundreds.
+    // whip) ask for hundreds. (From a tip amplitude of 0.15, past the mode theory's small
+    // swings, which would otherwise choose before any pilot of the rods flies.)
     let mode = Scene::Mode {
         number: 2,
-        amplitude: 0.05,
+        amplitude: 0.15,
     };
     let (choice, pilots) = tolerance::choose(1e-3, &mode, 3.0, u64::MAX).unwrap();
     let committed = choice::by_committed(1e-3, 3.0, &mode, |_, _, _| true).unwrap();
@@ -404,11 +415,11 @@ fn a_scene_its_pilots_show_cheaper_is_run_from_their_model_and_holds() {
         choice.segments * 4 < committed.segments,
         "{choice:?} {committed:?}"
     );
-    // Held at every frame against the chain at N = 100, 200, 400 extrapolated: its distance
+    // Held at every frame against the chain at N = 200, 400, 800 extrapolated: its distance
     // from the reference plus the reference's own error bounds its distance from the truth.
     let reference = TipReference::compute(&mode, 200, 3.0).unwrap();
     assert!(
-        reference.own_error <= 1e-5,
+        reference.own_error <= 1e-4,
         "own error {:.1e}",
         reference.own_error
     );
@@ -417,6 +428,8 @@ fn a_scene_its_pilots_show_cheaper_is_run_from_their_model_and_holds() {
         "mode",
         "--mode-number",
         "2",
+        "--amplitude",
+        "0.15",
         "--tolerance",
         "1e-3",
     ];

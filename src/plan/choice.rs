@@ -10,8 +10,7 @@ use crate::methods::MethodKind;
 use crate::model::Scene;
 use crate::run::estimate::TipBound;
 
-/// Fewest segments the rule chooses: fewer is a pendulum, not a rope.
-const MIN_SEGMENTS: usize = 4;
+pub use super::error_model::MIN_SEGMENTS;
 
 /// The longest run the rule will choose, in predicted CPU seconds.
 pub const MAX_SECONDS: f64 = 3600.0;

@@ -1,10 +1,12 @@
 //! The committed error models of one scene: what each method's tip error is known to be
 //! without flying it, before the pilots measure the scene itself. For a release, the release
-//! atlas of the method's rods where it serves ([`from_atlas`]); else the method's one law
+//! atlas of the method's rods where it serves ([`from_atlas`]); for a small mode, the linear
+//! theory of the equal rods' small oscillations ([`mode_theory`]); else the method's one law
 //! ([`law`]), fitted to the worst of six scenes.
 
 use super::atlas::Atlas;
-use super::error_model::{ErrorModel, law};
+use super::error_model::{ErrorModel, MIN_SEGMENTS, SAFETY, law};
+use super::mode_theory;
 
 use crate::methods::MethodKind;
 use crate::model::Scene;
@@ -16,6 +18,9 @@ pub enum Source {
     Atlas,
     /// The method's one law, fitted to the worst of six scenes ([`law`]).
     Law,
+    /// The linear theory of equal rods started in a mode ([`mode_theory`], [`from_theory`]):
+    /// their error at every instant of the run, worked out before it.
+    Theory,
 }
 
 /// Every method's committed error model for one scene, duration and tolerance, and where it
@@ -33,6 +38,9 @@ pub struct Committed {
     /// safety, and at the N = 2 639 that asked, the tip erred by 1.15e-4 at 1e-4, 0.30/N).
     /// A mode's error settles within the pilots' N, and its own model stands.
     pub floors_pilots: bool,
+    /// The order the theory's error falls at where it holds the tolerance ([`from_theory`]), for
+    /// the methods it serves: the order a run's live estimate is read at.
+    pub theory_order: Option<f64>,
 }
 
 impl Committed {
@@ -42,39 +50,50 @@ impl Committed {
     pub fn look_up(scene: &Scene, duration: f64, tolerance: f64) -> Self {
         let measured_here = matches!(scene, Scene::Release { .. } | Scene::Mode { .. });
         let floors_pilots = matches!(scene, Scene::Release { .. });
-        let models = MethodKind::ALL
-            .into_iter()
-            .map(
-                |method| match from_atlas(method, scene, duration, tolerance) {
-                    Some(model) => (method, model, Source::Atlas),
-                    None => (method, law(method), Source::Law),
-                },
-            )
-            .collect();
+        let theory = from_theory(scene, duration, tolerance);
+        let mut models = Vec::with_capacity(MethodKind::ALL.len());
+        for method in MethodKind::ALL {
+            let entry = if let Some(model) = theory.filter(|_| mode_theory::of_rods(method)) {
+                (method, model, Source::Theory)
+            } else if let Some(model) = from_atlas(method, scene, duration, tolerance) {
+                (method, model, Source::Atlas)
+            } else {
+                (method, law(method), Source::Law)
+            };
+            models.push(entry);
+        }
         Self {
             models,
             duration,
             measured_here,
             floors_pilots,
+            theory_order: theory.map(|model| model.order),
         }
     }
 
     /// Whether `method`'s committed model was measured over the run's whole duration: an
-    /// atlas's always (one serves only runs within its window), the one law up to
+    /// atlas's always (one serves only runs within its window), the theory's always (it is
+    /// worked out over the run's own), the one law up to
     /// [`LAW_UNTIL`]. One that does not may not overrule a looser figure the pilots measured
     /// over the run's own time.
     pub fn covers(&self, method: MethodKind) -> bool {
-        self.measured_here && (self.source(method) == Source::Atlas || self.duration <= LAW_UNTIL)
+        self.measured_here
+            && match self.source(method) {
+                Source::Atlas | Source::Theory => true,
+                Source::Law => self.duration <= LAW_UNTIL,
+            }
     }
 
     /// Whether a pilot of `method` at `segments` could change the choice for `eps`. Where the
     /// release atlas serves the method ([`Source::Atlas`]: it covers the run, and rules over the
-    /// pilots' own, [`Committed::floors_pilots`]), a pilot changes it only by holding EPS at its
-    /// own level, and its bound there is about [`SAFETY`](super::pilot::SAFETY) times the error there (the difference
+    /// pilots' own, [`Committed::floors_pilots`]), or the mode theory does ([`Source::Theory`]:
+    /// the scene's own error at every instant, which no pilot's fit at N ≤ 64 betters), a
+    /// pilot changes it only by holding EPS at its
+    /// own level, and its bound there is about [`SAFETY`] times the error there (the difference
     /// to its shadow at N/2, times the safety), so it holds only where the error is within
-    /// `eps` / [`SAFETY`](super::pilot::SAFETY). It flies only where the committed model's error at `segments`,
+    /// `eps` / [`SAFETY`]. It flies only where the committed model's error at `segments`,
     /// without its margin, is within `eps`: where that model may overstate the scene's error by
-    /// up to [`SAFETY`](super::pilot::SAFETY) (an angle between two of the atlas's, whose error is below the larger
+    /// up to [`SAFETY`] (an angle between two of the atlas's, whose error is below the larger
     /// of theirs), the pilot still flies. Elsewhere every pilot may: the one law is the worst
     /// of six scenes, and a scene far from it holds by its pilot (from 90°, hanging still, the
     /// seed at N = 16, where its law reads 0.2).
@@ -82,7 +101,11 @@ impl Committed {
     /// From 10° at 1e-2 the pilots took 9.5 ms, more than the 8.6 ms of the run the atlas
     /// chose (the chain at N = 50, its own row's first that holds), and none could hold.
     pub fn may_hold(&self, method: MethodKind, segments: usize, eps: f64) -> bool {
-        let ruled = self.source(method) == Source::Atlas && self.floors_pilots;
+        let ruled = match self.source(method) {
+            Source::Atlas => self.floors_pilots,
+            Source::Theory => true,
+            Source::Law => false,
+        };
         !ruled || self.model(method).predict(segments) <= eps
     }
 
@@ -122,4 +145,26 @@ pub fn from_atlas(
     tolerance: f64,
 ) -> Option<ErrorModel> {
     Atlas::of(method, duration)?.model(scene, duration, tolerance)
+}
+
+/// The linear theory's error model of a small mode to `duration` at `tolerance`
+/// ([`mode_theory`]); `None` where the theory does not serve the scene
+/// ([`mode_theory::serves`]) or reaches no N for it. A law through the theory's errors at two
+/// segment counts a doubling apart, the fewer past `tolerance` and the more within it, times
+/// [`SAFETY`] as a pilot's model is: its order that of the two, held
+/// between 1 and 2 (the rods' nominal), its constant the larger of the two points', so that it
+/// bounds both. Its order is also the one the run's live estimate is read at.
+pub fn from_theory(scene: &Scene, duration: f64, tolerance: f64) -> Option<ErrorModel> {
+    let safety = SAFETY;
+    let bracket = mode_theory::bracket(scene, duration, tolerance, safety, MIN_SEGMENTS)?;
+    let order = bracket.order().clamp(1.0, 2.0);
+    let constant = f64::max(
+        bracket.fewer.1 * (bracket.fewer.0 as f64).powf(order),
+        bracket.more.1 * (bracket.more.0 as f64).powf(order),
+    );
+    Some(ErrorModel {
+        constant,
+        order,
+        safety,
+    })
 }

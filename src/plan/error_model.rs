@@ -5,6 +5,16 @@
 
 use crate::methods::MethodKind;
 
+/// What the pilots' model is multiplied by, beyond the scatter of its own fit: the margin
+/// for an error that grows faster between the pilots' N and the chosen one than between the
+/// pilots. (The live estimate's misses of the whip, by a factor near 3, come from dividing by
+/// the method's nominal order; the pilots divide by the order they observe.) The mode theory's
+/// model carries it too ([`crate::plan::committed::from_theory`]).
+pub const SAFETY: f64 = 1.5;
+
+/// Fewest segments the rule chooses: fewer is a pendulum, not a rope.
+pub const MIN_SEGMENTS: usize = 4;
+
 /// `method`'s one committed error law: the largest tip error up to t = 3 ≈ C h^p with its
 /// measured safety factor, fitted by `rope study --estimate-check` over the releases at 0°,
 /// 30°, 60°, 90° and modes 1 and 2 (`assets/estimate-check/`). `--tolerance` rests on it

@@ -17,6 +17,7 @@ pub mod atlas;
 pub mod choice;
 pub mod committed;
 pub mod error_model;
+pub mod mode_theory;
 pub mod pilot;
 pub mod runs;
 pub mod tolerance;

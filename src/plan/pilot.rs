@@ -15,7 +15,7 @@
 //! where the atlas's error there is within EPS ([`Committed::may_hold`]).
 
 use super::choice::{self, Choice};
-use super::committed::Committed;
+use super::committed::{Committed, Source};
 use super::error_model::ErrorModel;
 use crate::error::Diverged;
 use crate::methods::MethodKind;
@@ -59,11 +59,7 @@ pub fn levels(scene: &Scene) -> [usize; 3] {
 /// live estimate goes on watching the rest).
 pub const WINDOW: f64 = 10.0;
 
-/// What the pilots' model is multiplied by, beyond the scatter of its own fit: the margin
-/// for an error that grows faster between the pilots' N and the chosen one than between the
-/// pilots. (The live estimate's misses of the whip, by a factor near 3, come from dividing by
-/// the method's nominal order; the pilots divide by the order they observe.)
-pub const SAFETY: f64 = 1.5;
+pub use super::error_model::SAFETY;
 
 /// Frames per time unit at which the pilots read their estimate.
 const RATE: f64 = 60.0;
@@ -240,16 +236,25 @@ impl Flight {
 
 /// How the chosen run's live estimate bounds its tip error ([`TipBound`]): for a mode, at the
 /// order the pilots of its rods observed ([`Pilot::observed_order`]) times [`SAFETY`], as a
-/// pilot's own bound is; elsewhere, and where they observed none, at first order. A mode swings
+/// pilot's own bound is, or where they observed none, at the order the linear theory shows
+/// for the chosen rods ([`Committed::theory_order`]); elsewhere at first order. A mode swings
 /// with no whip, and its error keeps the order the pilots saw: mode 2 at 1e-4, the chain's
 /// pilots saw 1.75 from N = 32 to 64, and at the N = 134 chosen the tip erred by 4.2e-5 where
 /// the first-order bound read 1.1e-4, a false alarm, and the bound at 1.75 with its safety
 /// 6.9e-5. A release whips past the pilots' N, and a fold's order climbs between its levels
 /// (1.6, 2.5, then 3.4 a doubling): those keep the first order.
-pub fn tip_bound(scene: &Scene, flown: &[Pilot], method: MethodKind) -> TipBound {
+pub fn tip_bound(
+    scene: &Scene,
+    flown: &[Pilot],
+    method: MethodKind,
+    models: &Committed,
+) -> TipBound {
     let of = |m: MethodKind| flown.iter().find(|p| p.method == m);
     let pilot = of(method).and_then(|p| p.measured_by.map_or(Some(p), of));
-    match (scene, pilot.and_then(Pilot::observed_order)) {
+    let theory = (models.source(method) == Source::Theory)
+        .then_some(models.theory_order)
+        .flatten();
+    match (scene, pilot.and_then(Pilot::observed_order).or(theory)) {
         (Scene::Mode { .. }, Some(order)) => TipBound::Observed {
             order,
             safety: SAFETY,
@@ -278,6 +283,9 @@ pub enum Basis {
     CommittedOverPilots,
     /// The committed model alone: no pilot was worth its cost, or none measured anything.
     Committed,
+    /// The linear theory of the rods' small oscillations ([`mode_theory`](super::mode_theory)):
+    /// their error at every instant of the run, worked out before it, times [`SAFETY`].
+    Theory,
     /// The committed model, from the release atlas of the chosen rods
     /// ([`from_atlas`](super::committed::from_atlas)): their error measured at this angle, or from
     /// its neighbours, or the envelope of every angle's, up to large N, alone or tighter than the
@@ -301,6 +309,9 @@ impl Basis {
             Self::Atlas => {
                 "the release atlas of the chosen rods: their worst error to t = 3 (to t = 5 from 40°) at every 1/3000 of a time unit, measured every 5° of release angle against converged references: at this angle, or from its two neighbours or every angle's largest, times the margin measured for each (`scripts/release-atlas.sh`; docs/guide.md, § --tolerance)"
             }
+            Self::Theory => {
+                "the linear theory of the rods' small oscillations: their tip against the string's mode at every 1/3000 of the run, worked out before it, times 1.5 (it bounds the chain's error within 0.93 to 1.19 for modes 1 and 2 up to a tip amplitude of 0.1, to t = 10: `cargo run --release --example mode_theory`)"
+            }
             Self::Committed => {
                 "the committed error model, fitted to t = 3 over six scenes by `rope study --estimate-check`, no cheaper run found by the pilots that were worth their cost"
             }
@@ -316,6 +327,7 @@ impl Basis {
                 "committed model"
             }
             Self::Atlas => "release atlas",
+            Self::Theory => "linear theory",
         }
     }
 }
@@ -349,13 +361,11 @@ pub(super) struct Best {
 /// The ladder: each level for every method not ruled out, cheapest first, until a pilot holds
 /// `eps` by its own [`Pilot::bound`] (and its run `fits`), or the next pilot would take the
 /// pilots' predicted CPU past what the best choice known so far would cost (measuring must
-/// cost less than it can save); a pilot that could not hold where the atlas rules
-/// ([`Committed::may_hold`]) is passed over, and so is one that could not save its own cost, the best less its
-/// method's likeliest run ([`Pilot::fewest`]), is passed over. That best is at first the
+/// cost less than it can save). Passed over: a pilot that could not hold where the atlas or the
+/// mode theory rules ([`Committed::may_hold`]), and one that could not save its own cost, the
+/// best less its method's likeliest run ([`Pilot::fewest`]). That best is at first the
 /// committed models' choice ([`choice::from_committed`]), then after each pilot the cheapest
-/// that the pilots' own models allow, where cheaper: a scene whose pilots show it cheap stops
-/// measuring early.
-/// `seconds` is a run's predicted CPU, shadow included; each pilot flies as `rehearse` says;
+/// that the pilots' own models allow, where cheaper. `seconds` is a run's predicted CPU, shadow included; each pilot flies as `rehearse` says;
 /// `before_flying` is told of the first pilot just before it flies (not at all where none does).
 pub(super) fn climb(
     asked: Asked<'_>,

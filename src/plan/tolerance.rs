@@ -106,17 +106,20 @@ pub fn choose_telling(
     let climbed = pilot::climb(asked, seconds, fits, rehearse, before_flying);
     let (flown, rehearsal) = (climbed.pilots, climbed.rehearsal);
     if let Some(best) = climbed.best {
-        let from_atlas = models.source(best.choice.method) == Source::Atlas;
-        let basis = match best.basis {
-            Basis::Committed | Basis::CommittedTighter | Basis::CommittedOverPilots
-                if from_atlas =>
+        let basis = match (best.basis, models.source(best.choice.method)) {
+            (Basis::Committed | Basis::CommittedTighter | Basis::CommittedOverPilots, source)
+                if source != Source::Law =>
             {
-                Basis::Atlas
+                match source {
+                    Source::Atlas => Basis::Atlas,
+                    _ => Basis::Theory,
+                }
             }
-            basis => basis,
+            (basis, _) => basis,
         };
+        let tip_bound = pilot::tip_bound(scene, &flown, best.choice.method, &models);
         let choice = Choice {
-            tip_bound: pilot::tip_bound(scene, &flown, best.choice.method),
+            tip_bound,
             ..best.choice
         };
         return Ok((

@@ -25,8 +25,8 @@ pub enum TipBound {
     /// `assets/tolerance-instants/`). The default, and a release's, a fold's and a shake's.
     #[default]
     FirstOrder,
-    /// Richardson's estimate at an order measured on the scene itself (by `--tolerance`'s pilots),
-    /// times `safety` (at least 1), where that is below the first-order bound: for a scene with no
+    /// Richardson's estimate at an order measured on the scene itself (by `--tolerance`'s pilots,
+    /// or worked out by a mode's linear theory, `plan::mode_theory`), times `safety` (at least 1), where that is below the first-order bound: for a scene with no
     /// whip, whose error keeps the order the pilots saw (a mode's). At first order there the bound
     /// reads about three times a second-order error, and a run whose truth is a third of its
     /// tolerance would be flagged.
@@ -56,7 +56,9 @@ impl TipBound {
         match self {
             Self::FirstOrder => "first-order bound".to_owned(),
             Self::Observed { order, safety } => {
-                format!("bound at the order the pilots observed ({order:.2}, ×{safety} safety)")
+                format!(
+                    "bound at the mode's own order ({order:.2}, seen by its pilots or worked out by the linear theory, ×{safety} safety)"
+                )
             }
         }
     }

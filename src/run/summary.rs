@@ -163,8 +163,8 @@ pub struct Summary {
     /// estimate was lost before the end (`error_estimate.lost`).
     pub tolerance_met: Option<bool>,
     /// How the live estimate bounded the tip's error for the tolerance: at first order (a
-    /// whip's), or, for a mode, at the order `--tolerance`'s pilots observed, times a safety
-    /// factor; absent without a tolerance.
+    /// whip's), or, for a mode, at the order `--tolerance`'s pilots observed or its linear theory
+    /// works out, times a safety factor; absent without a tolerance.
     pub tolerance_bound: Option<TipBound>,
     /// When the tip estimate first passed the tolerance.
     pub tolerance_exceeded_at: Option<f64>,
