@@ -20,6 +20,7 @@
 
 use crate::methods::MethodKind;
 use crate::model::{Scene, bessel};
+use crate::run::estimate::TipBound;
 use nalgebra::{DMatrix, DVector};
 
 /// The largest tip amplitude the theory serves ([`serves`]).
@@ -60,13 +61,40 @@ pub fn serves(scene: &Scene, duration: f64) -> bool {
 /// The largest sideways distance, over every 1/[`RATE`] of [0, `duration`], between the tip of
 /// `segments` equal rods started in mode `number` of tip amplitude `amplitude` and the string's
 /// tip, by linear theory; `None` for no rods.
+pub fn tip_error(number: u32, amplitude: f64, segments: usize, duration: f64) -> Option<f64> {
+    let rods = tip_waves(number, amplitude, segments)?;
+    let string = [(bessel::mode_frequency(number), amplitude)];
+    worst_gap(&rods, &string, duration)
+}
+
+/// What a run's live estimate of the same will read at most ([`TipBound`]): the largest
+/// distance between the tips of `segments` rods and of its shadow's N/2, over every
+/// 1/[`RATE`], times the bound's factor; `None` for fewer than two rods.
+pub fn live_bound(
+    number: u32,
+    amplitude: f64,
+    segments: usize,
+    duration: f64,
+    bound: TipBound,
+) -> Option<f64> {
+    let shadow = segments / 2;
+    let gap = worst_gap(
+        &tip_waves(number, amplitude, segments)?,
+        &tip_waves(number, amplitude, shadow)?,
+        duration,
+    )?;
+    let ratio = segments as f64 / shadow as f64;
+    Some(gap * bound.of_first_order(ratio) / (ratio - 1.0))
+}
+
+/// The tip of `segments` equal rods started in mode `number`, as Σ b cos(w t): each of the
+/// rods' own modes as (w, b), the most excited first; `None` for no rods.
 ///
 /// With K diagonal, z = K^½ α turns M α̈ + K α = 0 into B z̈ + z = 0, B = K^-½ M K^-½
-/// symmetric: its eigenvalues are 1/ω_k² and the tip is Σ_k b_k cos ω_k t. The rods' modes
-/// that the start hardly excites are left out, their weights |b_k| added to the result
-/// instead (an error of at most 1 % of it, on the safe side).
-pub fn tip_error(number: u32, amplitude: f64, segments: usize, duration: f64) -> Option<f64> {
-    if segments == 0 || !duration.is_finite() {
+/// symmetric: its eigenvalues are 1/w², and b = (uᵀ K^-½ h1)(uᵀ K^½ α₀) for each of its
+/// eigenvectors u.
+fn tip_waves(number: u32, amplitude: f64, segments: usize) -> Option<Vec<(f64, f64)>> {
+    if segments == 0 {
         return None;
     }
     let n = segments;
@@ -94,44 +122,51 @@ pub fn tip_error(number: u32, amplitude: f64, segments: usize, duration: f64) ->
     let eigen = b.symmetric_eigen();
     let z0 = DVector::from_fn(n, |j, _| root_k[j] * start(j));
     let tip = DVector::from_fn(n, |j, _| h / root_k[j]);
-    let mut modes: Vec<(f64, f64)> = (0..n)
+    let mut waves: Vec<(f64, f64)> = (0..n)
         .map(|k| {
             let u = eigen.eigenvectors.column(k);
-            let weight = u.dot(&tip) * u.dot(&z0);
-            (
-                eigen.eigenvalues[k].max(f64::MIN_POSITIVE).recip().sqrt(),
-                weight,
-            )
+            let frequency = eigen.eigenvalues[k].max(f64::MIN_POSITIVE).recip().sqrt();
+            (frequency, u.dot(&tip) * u.dot(&z0))
         })
         .collect();
-    modes.sort_by(|a, b| b.1.abs().total_cmp(&a.1.abs()));
-    // The error of the most excited mode alone, then the rest kept down to a hundredth of it.
-    let instants = (duration * RATE).ceil() as usize;
-    let worst_of = |kept: &[(f64, f64)]| worst_difference(kept, amplitude, omega, instants);
-    let first = worst_of(&modes[..1]);
-    let mut dropped = 0.0;
-    let mut kept = modes.len();
-    while kept > 1 && dropped + modes[kept - 1].1.abs() <= 0.01 * first {
-        dropped += modes[kept - 1].1.abs();
-        kept -= 1;
-    }
-    Some(worst_of(&modes[..kept]) + dropped)
+    waves.sort_by(|a, b| b.1.abs().total_cmp(&a.1.abs()));
+    Some(waves)
 }
 
-/// The largest of |Σ b cos(w t) − A cos(ω t)| at t = i/[`RATE`], i = 0 … `instants`, each
-/// cosine carried from one instant to the next by cos((i + 1)θ) = 2 cos θ cos iθ − cos((i − 1)θ).
-fn worst_difference(modes: &[(f64, f64)], amplitude: f64, omega: f64, instants: usize) -> f64 {
+/// The largest |Σ_a b cos(w t) − Σ_b b cos(w t)| over every 1/[`RATE`] of [0, `duration`]. Each
+/// sum's least excited waves are left out, their weights |b| added to the result instead (on
+/// the safe side), as long as they come to at most a hundredth of the gap between the two most
+/// excited alone. `None` for an empty sum or an endless run.
+fn worst_gap(a: &[(f64, f64)], b: &[(f64, f64)], duration: f64) -> Option<f64> {
+    if a.is_empty() || b.is_empty() || !duration.is_finite() {
+        return None;
+    }
+    let instants = (duration.max(0.0) * RATE).ceil() as usize;
+    let first = largest_difference(&a[..1], &b[..1], instants);
+    let mut dropped = 0.0;
+    let kept = |waves: &[(f64, f64)], dropped: &mut f64| {
+        let mut kept = waves.len();
+        while kept > 1 && *dropped + waves[kept - 1].1.abs() <= 0.005 * first {
+            *dropped += waves[kept - 1].1.abs();
+            kept -= 1;
+        }
+        kept
+    };
+    let (in_a, in_b) = (kept(a, &mut dropped), kept(b, &mut dropped));
+    Some(largest_difference(&a[..in_a], &b[..in_b], instants) + dropped)
+}
+
+/// The largest of |Σ_a b cos(w t) − Σ_b b cos(w t)| at t = i/[`RATE`], i = 0 … `instants`,
+/// each cosine carried from one instant to the next by cos((i + 1)θ) = 2 cos θ cos iθ −
+/// cos((i − 1)θ).
+fn largest_difference(a: &[(f64, f64)], b: &[(f64, f64)], instants: usize) -> f64 {
     let dt = 1.0 / RATE;
-    // Each wave as (weight, 2 cos θ, cos iθ, cos (i − 1)θ), the string's own the last.
-    let mut waves: Vec<[f64; 4]> = modes
+    // Each wave as (weight, 2 cos θ, cos iθ, cos (i − 1)θ), the second sum's weights negated.
+    let wave = |w: f64, b: f64| [b, 2.0 * (w * dt).cos(), 1.0, (w * dt).cos()];
+    let mut waves: Vec<[f64; 4]> = a
         .iter()
-        .map(|&(w, b)| [b, 2.0 * (w * dt).cos(), 1.0, (w * dt).cos()])
-        .chain(std::iter::once([
-            -amplitude,
-            2.0 * (omega * dt).cos(),
-            1.0,
-            (omega * dt).cos(),
-        ]))
+        .map(|&(w, b)| wave(w, b))
+        .chain(b.iter().map(|&(w, b)| wave(w, -b)))
         .collect();
     let mut worst: f64 = 0.0;
     for _ in 0..=instants {
