@@ -48,6 +48,10 @@ impl Committed {
     /// Each method's committed model from `scene` to `duration` for `tolerance`: the release
     /// atlas's ([`from_atlas`]) where it serves, else the method's one law, fitted to the
     /// worst of six scenes. None for a fold or a shake ([`Committed::measured_here`]).
+    // Never inlined: a choice read the theory's model with its order lost (0 where the model
+    // said 1.84) where this was inlined into `tolerance::choose`, and not where it was called
+    // from a test, nor once a print was added; the same code compiled once for every caller.
+    #[inline(never)]
     pub fn look_up(scene: &Scene, duration: f64, tolerance: f64) -> Self {
         let measured_here = matches!(scene, Scene::Release { .. } | Scene::Mode { .. });
         let floors_pilots = matches!(scene, Scene::Release { .. });
@@ -163,6 +167,7 @@ pub const LIVE_MARGIN: f64 = 0.9;
 /// order is also the one the run's live estimate is read at, and where that estimate would
 /// read past [`LIVE_MARGIN`] × `tolerance` at the N the law asks ([`mode_theory::live_bound`]:
 /// the run would be flagged though it held), the law asks a tenth more, until it would not.
+#[inline(never)]
 pub fn from_theory(scene: &Scene, duration: f64, tolerance: f64) -> Option<ErrorModel> {
     let Scene::Mode { number, amplitude } = *scene else {
         return None;
