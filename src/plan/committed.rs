@@ -48,9 +48,9 @@ impl Committed {
     /// Each method's committed model from `scene` to `duration` for `tolerance`: the release
     /// atlas's ([`from_atlas`]) where it serves, else the method's one law, fitted to the
     /// worst of six scenes. None for a fold or a shake ([`Committed::measured_here`]).
-    // Never inlined: a choice read the theory's model with its order lost (0 where the model
-    // said 1.84) where this was inlined into `tolerance::choose`, and not where it was called
-    // from a test, nor once a print was added; the same code compiled once for every caller.
+    // Never inlined: an earlier form of this, inlined into `tolerance::choose`, read the
+    // theory's model with its order as 0 (where it is 1.84), and read it right once a print
+    // was added or when called from a test; one compiled copy serves every caller alike.
     #[inline(never)]
     pub fn look_up(scene: &Scene, duration: f64, tolerance: f64) -> Self {
         let measured_here = matches!(scene, Scene::Release { .. } | Scene::Mode { .. });
