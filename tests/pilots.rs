@@ -270,6 +270,7 @@ fn a_pilots_bound_is_its_estimate_rescaled_to_the_order_it_observes() {
         shadow_lost: Vec::new(),
         measured_by: None,
         seconds: 0.0,
+        passed_over: None,
     };
     // One level: no order observed, the lowest taken (a whip's first), so the difference
     // the estimate divided by 2² − 1 is divided by 2¹ − 1 instead.
@@ -394,6 +395,15 @@ fn methods_of_one_discretization_fly_one_pilot_the_cheapest() {
     let (_, said) = tolerance_run("pilot-rods", &["--angle", "30", "--tolerance", "1e-2"]);
     assert!(
         said.contains("rattle: not flown: its rods are the chain's"),
+        "{said}"
+    );
+    // From 30° at 1e-2 the release atlas rules the chain's choice and puts its error at
+    // N = 16 and 32 past EPS: its pilots could change the choice only by holding, and do not
+    // fly, and the announcement says so.
+    assert!(
+        said.contains(
+            "chain: not flown: the release atlas puts its error at N = 16 and 32 past the tolerance"
+        ),
         "{said}"
     );
 }

@@ -14,6 +14,7 @@
 //! method's choice, its pilot could change it only by holding at its own level, and flies only
 //! where the atlas's error there is within EPS ([`Committed::may_hold`]).
 
+pub use super::basis::Basis;
 use super::choice::{self, Choice};
 use super::committed::{Committed, Source};
 use super::error_model::ErrorModel;
@@ -90,6 +91,45 @@ pub struct Pilot {
     pub measured_by: Option<MethodKind>,
     /// CPU seconds the pilots took (one thread).
     pub seconds: f64,
+    /// Why the climb passed this method's pilot over, and at which levels, if it did.
+    pub passed_over: Option<PassedOver>,
+}
+
+/// Why the climb passed a method's pilot over, and at which levels, so that the announcement
+/// can say why a method was not flown.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct PassedOver {
+    pub why: PassedOverWhy,
+    /// The levels passed over for that reason, lowest first.
+    pub levels: Vec<usize>,
+}
+
+/// Why the climb passed a pilot over at a level.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PassedOverWhy {
+    /// Its committed model (the release atlas, or the mode theory) puts its error there past
+    /// EPS: the pilot could change the choice only by holding, and could not
+    /// ([`Committed::may_hold`]).
+    CannotHold(Source),
+    /// It could not save what it costs: the best run known costs less than the pilots spent
+    /// so far, this one and its method's likeliest run together.
+    CannotSave,
+}
+
+impl Pilot {
+    /// Notes that the climb passed this pilot over at `segments`, and why: a reason other
+    /// than the last one noted replaces it.
+    fn pass_over(&mut self, segments: usize, why: PassedOverWhy) {
+        match &mut self.passed_over {
+            Some(p) if p.why == why => p.levels.push(segments),
+            _ => {
+                self.passed_over = Some(PassedOver {
+                    why,
+                    levels: vec![segments],
+                })
+            }
+        }
+    }
 }
 
 impl Pilot {
@@ -108,6 +148,7 @@ impl Pilot {
             shadow_lost: Vec::new(),
             measured_by: None,
             seconds: 0.0,
+            passed_over: None,
         }
     }
 
@@ -269,69 +310,6 @@ fn level_seconds(method: MethodKind, segments: usize, duration: f64) -> f64 {
     Cost::of_estimated_run(method, segments, dt, duration.min(WINDOW), RATE, true).seconds
 }
 
-/// Where a `--tolerance` choice's predicted error comes from.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Basis {
-    /// A pilot at the chosen method and N held EPS by its own estimate ([`Pilot::bound`]).
-    Held,
-    /// The scene's own error model, fitted to the pilots' estimates ([`Pilot::model`]).
-    OwnModel,
-    /// The committed model, asking fewer segments than the pilots' own ([`ruling_model`]).
-    CommittedTighter,
-    /// The committed model, for a release, where the pilots' own asked fewer segments
-    /// ([`Committed::floors_pilots`]).
-    CommittedOverPilots,
-    /// The committed model alone: no pilot was worth its cost, or none measured anything.
-    Committed,
-    /// The linear theory of the rods' small oscillations ([`mode_theory`](super::mode_theory)):
-    /// their error at every instant of the run, worked out before it, times [`SAFETY`].
-    Theory,
-    /// The committed model, from the release atlas of the chosen rods
-    /// ([`from_atlas`](super::committed::from_atlas)): their error measured at this angle, or from
-    /// its neighbours, or the envelope of every angle's, up to large N, alone or tighter than the
-    /// pilots' own.
-    Atlas,
-}
-
-impl Basis {
-    /// What the choice rests on, in a sentence's words (the run's announcement and its
-    /// summary say it).
-    pub fn meaning(self) -> &'static str {
-        match self {
-            Self::Held => "the scene's own error, measured by the pilot at this N",
-            Self::OwnModel => "the scene's own error model, from the pilots",
-            Self::CommittedTighter => {
-                "the committed error model, here tighter than the pilots' own (measured at N ≤ 64)"
-            }
-            Self::CommittedOverPilots => {
-                "the committed error model, measured up to large N, over the pilots' own, which asked fewer rods: a release's error constant goes on growing past the pilots' N ≤ 64"
-            }
-            Self::Atlas => {
-                "the release atlas of the chosen rods: their worst error to t = 3 (to t = 5 from 40°) at every 1/3000 of a time unit, measured every 5° of release angle against converged references: at this angle, or from its two neighbours or every angle's largest, times the margin measured for each (`scripts/release-atlas.sh`; docs/guide.md, § --tolerance)"
-            }
-            Self::Theory => {
-                "the linear theory of the rods' small oscillations: their tip against the string's mode at every 1/3000 of the run, worked out before it, times 1.5 (it bounds the chain's error within 0.93 to 1.19 for modes 1 and 2 up to a tip amplitude of 0.1, to t = 10: `cargo run --release --example mode_theory`)"
-            }
-            Self::Committed => {
-                "the committed error model, fitted to t = 3 over six scenes by `rope study --estimate-check`, no cheaper run found by the pilots that were worth their cost"
-            }
-        }
-    }
-
-    /// A few words for a table.
-    pub fn label(self) -> &'static str {
-        match self {
-            Self::Held => "a pilot held",
-            Self::OwnModel => "pilots' model",
-            Self::CommittedTighter | Self::CommittedOverPilots | Self::Committed => {
-                "committed model"
-            }
-            Self::Atlas => "release atlas",
-            Self::Theory => "linear theory",
-        }
-    }
-}
-
 /// What the pilots flew for a choice, and what the choice rests on.
 #[derive(Clone, Debug)]
 pub struct Pilots {
@@ -411,6 +389,10 @@ pub(super) fn climb(
                 continue;
             }
             if !models.may_hold(pilot.method, segments, eps) {
+                pilot.pass_over(
+                    segments,
+                    PassedOverWhy::CannotHold(models.source(pilot.method)),
+                );
                 continue;
             }
             let cost = level_seconds(pilot.method, segments, duration);
@@ -431,6 +413,7 @@ pub(super) fn climb(
                 }
                 let floor = seconds(&choice::at(pilot.method, fewest, eps, duration));
                 if spent + cost > b.seconds - floor {
+                    pilot.pass_over(segments, PassedOverWhy::CannotSave);
                     continue;
                 }
             }

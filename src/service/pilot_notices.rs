@@ -2,7 +2,8 @@
 //! the pilots' own estimates to the model fitted to them (or why a method was not flown).
 
 use crate::methods::MethodKind;
-use crate::plan::pilot::{self, Pilots};
+use crate::plan::committed::Source;
+use crate::plan::pilot::{self, PassedOver, PassedOverWhy, Pilots};
 
 /// What the pilots of `--tolerance` measured, a line per method.
 pub fn pilot_lines(pilots: &Pilots, duration: f64) -> String {
@@ -11,6 +12,7 @@ pub fn pilot_lines(pilots: &Pilots, duration: f64) -> String {
         "rope: tolerance pilots: to t = {}, {seconds:.2} s of CPU; the largest live tip estimate at each N flown:",
         duration.min(pilot::WINDOW)
     );
+    let held = pilots.flown.iter().any(|p| p.held_at.is_some());
     for p in &pilots.flown {
         let measured: Vec<String> = p
             .measured
@@ -25,7 +27,7 @@ pub fn pilot_lines(pilots: &Pilots, duration: f64) -> String {
                 p.method.descriptor().discretization,
                 p.measured_by.map_or("", MethodKind::name)
             ),
-            (None, _, None) if !p.flew() => "not flown".to_owned(),
+            (None, _, None) if !p.flew() => not_flown(p.passed_over.as_ref(), held),
             (None, _, None) if p.measured.is_empty() && !p.shadow_lost.is_empty() => {
                 let lost: Vec<String> = p
                     .shadow_lost
@@ -57,4 +59,42 @@ pub fn pilot_lines(pilots: &Pilots, duration: f64) -> String {
         text += &format!("\n  {}: {what}", p.method);
     }
     text
+}
+
+/// Why a method's pilots did not fly: the climb passed them over, or ended before them (a
+/// pilot `held`, or the next would have cost more than the best run known).
+fn not_flown(passed_over: Option<&PassedOver>, held: bool) -> String {
+    let Some(passed_over) = passed_over else {
+        return match held {
+            true => "not flown: another method's pilot held first".to_owned(),
+            false => {
+                "not flown: the next pilot would have cost more than the best run known".to_owned()
+            }
+        };
+    };
+    let levels = match passed_over.levels.as_slice() {
+        [.., last] if passed_over.levels.len() > 1 => {
+            let before: Vec<String> = passed_over.levels[..passed_over.levels.len() - 1]
+                .iter()
+                .map(usize::to_string)
+                .collect();
+            format!("{} and {last}", before.join(", "))
+        }
+        levels => levels.iter().map(usize::to_string).collect(),
+    };
+    match passed_over.why {
+        PassedOverWhy::CannotHold(source) => {
+            let model = match source {
+                Source::Atlas => "the release atlas",
+                Source::Theory => "the linear theory",
+                Source::Law => "its committed law",
+            };
+            format!(
+                "not flown: {model} puts its error at N = {levels} past the tolerance, and a pilot could change the choice only by holding there"
+            )
+        }
+        PassedOverWhy::CannotSave => format!(
+            "not flown: its pilot at N = {levels} could not save what it costs beside the best run known"
+        ),
+    }
 }
