@@ -117,22 +117,6 @@ pub enum PassedOverWhy {
 }
 
 impl Pilot {
-    /// Notes that the climb passed this pilot over at `segments`, and why: a reason other
-    /// than the last one noted replaces it.
-    fn pass_over(&mut self, segments: usize, why: PassedOverWhy) {
-        match &mut self.passed_over {
-            Some(p) if p.why == why => p.levels.push(segments),
-            _ => {
-                self.passed_over = Some(PassedOver {
-                    why,
-                    levels: vec![segments],
-                })
-            }
-        }
-    }
-}
-
-impl Pilot {
     /// Whether this method's pilots flew: measured a level, lost its shadow, or diverged.
     pub fn flew(&self) -> bool {
         !self.measured.is_empty() || self.diverged.is_some() || !self.shadow_lost.is_empty()
@@ -149,6 +133,20 @@ impl Pilot {
             measured_by: None,
             seconds: 0.0,
             passed_over: None,
+        }
+    }
+
+    /// Notes that the climb passed this pilot over at `segments`, and why: a reason other
+    /// than the last one noted replaces it.
+    fn pass_over(&mut self, segments: usize, why: PassedOverWhy) {
+        match &mut self.passed_over {
+            Some(p) if p.why == why => p.levels.push(segments),
+            _ => {
+                self.passed_over = Some(PassedOver {
+                    why,
+                    levels: vec![segments],
+                })
+            }
         }
     }
 

@@ -72,15 +72,14 @@ fn not_flown(passed_over: Option<&PassedOver>, held: bool) -> String {
             }
         };
     };
-    let levels = match passed_over.levels.as_slice() {
-        [.., last] if passed_over.levels.len() > 1 => {
-            let before: Vec<String> = passed_over.levels[..passed_over.levels.len() - 1]
-                .iter()
-                .map(usize::to_string)
-                .collect();
-            format!("{} and {last}", before.join(", "))
+    // "16", "16 and 32", "16, 32 and 64".
+    let listed =
+        |levels: &[usize]| -> Vec<String> { levels.iter().map(usize::to_string).collect() };
+    let levels = match passed_over.levels.split_last() {
+        Some((last, before)) if !before.is_empty() => {
+            format!("{} and {last}", listed(before).join(", "))
         }
-        levels => levels.iter().map(usize::to_string).collect(),
+        _ => listed(&passed_over.levels).concat(),
     };
     match passed_over.why {
         PassedOverWhy::CannotHold(source) => {
