@@ -13,7 +13,7 @@ fn main() -> ExitCode {
         .map_err(ServiceError::from)
         .and_then(|session| match &cli.command {
             Command::Run(args) => service::run::run(args, &session).map(|o| o.exit_status),
-            Command::Study(args) => service::study::study(args, &session).map(|()| 0),
+            Command::Study(args) => service::study::study(args, &session).map(|v| v.exit_status()),
         });
     match result {
         Ok(status) => ExitCode::from(status),

@@ -29,7 +29,7 @@ fn scratch(name: &str) -> PathBuf {
 
 /// The study's reference of [`spec`], as a file would hold it.
 fn reference_file(spec: &Spec) -> ReferenceFile {
-    let r = study::reference(&spec.scene, spec.duration, FINEST).unwrap();
+    let r = study::reference(&spec.scene, spec.duration, FINEST, &|| ()).unwrap();
     ReferenceFile::new(spec.scene, spec.duration, FINEST, &r)
 }
 
@@ -39,8 +39,15 @@ fn run_shards(root: &std::path::Path, reference: &ReferenceFile) -> Vec<PathBuf>
         .map(|index| {
             let dir = root.join(index.to_string());
             let shard = Shard { index, count: 3 };
-            study::execute_shard(&spec(), shard, Some(reference.clone()), FINEST, &dir, || {})
-                .unwrap();
+            study::execute_shard(
+                &spec(),
+                shard,
+                Some(reference.clone()),
+                FINEST,
+                &dir,
+                &|| {},
+            )
+            .unwrap();
             dir
         })
         .collect()
@@ -63,7 +70,7 @@ fn three_shards_merged_give_the_rows_and_findings_of_one_whole_run() {
         reference.reference(),
         &root.join("whole"),
         "the command",
-        || {},
+        &|| {},
     )
     .unwrap();
     let dirs = run_shards(&root, &reference);

@@ -24,7 +24,7 @@ fn tiny_grid_writes_a_row_per_run_with_statuses_errors_and_every_chart() {
         dts: vec![1e-3, 3e-2],
     };
     let out = scratch("tiny");
-    let outcome = study::execute(&spec, 100, &out, "test", || {}).expect("the study runs");
+    let outcome = study::execute(&spec, 100, &out, "test", &|| {}).expect("the study runs");
     assert_eq!(outcome.rows.len(), 2 * 2 * MethodKind::ALL.len());
     // The seed scheme at N = 50 cannot take k = 3e-2 (its limit is about 1.7e-2 there).
     let seed_50_big = outcome
@@ -89,7 +89,7 @@ fn a_runs_tip_error_is_its_worst_over_the_frames_against_an_independent_fine_run
         dts: vec![2e-3],
     };
     let out = scratch("frames");
-    let outcome = study::execute(&spec, 200, &out, "test", || {}).expect("the study runs");
+    let outcome = study::execute(&spec, 200, &out, "test", &|| {}).expect("the study runs");
     let truth = study::trajectory::Trajectory::compute(&THIRTY, 400, spec.duration).unwrap();
     let resolution = outcome.reference.error_estimate() + 1e-4;
     let mut wider = 0;
@@ -134,7 +134,7 @@ fn seed_runs_from_the_horizontal_are_refused_and_the_chain_runs() {
         segments: vec![10],
         dts: vec![1e-3],
     };
-    let rows = study::run_grid(&spec, || {});
+    let rows = study::run_grid(&spec, &|| {}).unwrap();
     let seed = rows.iter().find(|r| r.method == MethodKind::Seed).unwrap();
     assert!(matches!(&seed.status, Status::Refused { reason } if reason.contains("horizontal")));
     let chain = rows.iter().find(|r| r.method == MethodKind::Chain).unwrap();
@@ -152,7 +152,7 @@ fn a_small_grid_says_why_it_fits_no_order_and_prints_steps_as_given() {
         dts: vec![1e-3, 1e-4],
     };
     let out = scratch("small");
-    let outcome = study::execute(&spec, 40, &out, "test", || {}).expect("the study runs");
+    let outcome = study::execute(&spec, 40, &out, "test", &|| {}).expect("the study runs");
     let findings = std::fs::read_to_string(out.join("findings.md")).unwrap();
     assert!(
         findings.contains("No fit for chain, rattle") && findings.contains("two or more N ≥ 20"),

@@ -9,7 +9,7 @@ use rope::study::tolerance_check::{CheckSpec, REFERENCE_MARGIN, check};
 #[test]
 fn the_quick_tolerance_check_holds_eps_against_a_converged_reference_in_each_scene() {
     let spec = CheckSpec::quick();
-    let checked = check(&spec, &[], || {}).unwrap();
+    let checked = check(&spec, &[], &|| {}).unwrap();
     let cells = &checked.cells;
     let eps = spec.tolerances[0];
     // The reference must be fine enough to judge EPS: the check says so when it is not.
@@ -156,7 +156,7 @@ fn a_grid_that_holds_nothing_goes_on_past_its_largest_n_until_a_run_holds() {
         ..CheckSpec::quick()
     };
     let ticks = AtomicUsize::new(0);
-    let checked = check(&spec, &[], || {
+    let checked = check(&spec, &[], &|| {
         ticks.fetch_add(1, Ordering::Relaxed);
     })
     .unwrap();
@@ -182,13 +182,13 @@ fn a_check_that_reads_its_references_back_judges_every_run_as_the_one_that_compu
         }],
         ..CheckSpec::quick()
     };
-    let computed = check(&spec, &[], || {}).unwrap();
+    let computed = check(&spec, &[], &|| {}).unwrap();
     let path = std::env::temp_dir().join(format!("rope-check-refs-{}.csv", std::process::id()));
     write_references(&path, &computed.references, spec.duration).unwrap();
     let read = read_all(std::slice::from_ref(&path), &spec.scenes, spec.duration);
     std::fs::remove_file(&path).unwrap();
     let read = read.unwrap();
-    let again = check(&spec, &read, || {}).unwrap();
+    let again = check(&spec, &read, &|| {}).unwrap();
     let (before, after) = (&computed.references[0], &again.references[0]);
     assert!(matches!(before, CheckReference::Computed(_)));
     assert!(

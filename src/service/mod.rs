@@ -65,7 +65,9 @@ fn interrupt_flag() -> anyhow::Result<Arc<AtomicBool>> {
                 // A second Ctrl-C: leave now, as an interrupted run.
                 std::process::exit(i32::from(Verdict::Interrupted.exit_status()));
             }
-            eprintln!("rope: interrupted, finishing the recording…");
+            eprintln!(
+                "rope: interrupted, finishing the recording or the runs under way (again to leave at once)…"
+            );
         })
         .map(|()| stop)
         .map_err(|err| format!("installing the Ctrl-C / SIGTERM handler: {err}"))

@@ -8,9 +8,12 @@ use super::notices::{Notice, Topic};
 use super::{ServiceError, Session};
 use crate::cli::{CheckSize, StudyArgs, check_writable_file, writable_dir};
 use crate::methods::MethodKind;
+use crate::run::Verdict;
 use crate::run::cost;
 use crate::run::progress::Counter;
+use crate::study::{Progress, Stopped};
 use anyhow::Context as _;
+use std::sync::atomic::Ordering;
 
 /// A line of what the study does, or wrote.
 fn say(session: &Session, text: String) {
@@ -30,8 +33,55 @@ fn report(session: &Session, markdown: String) {
     session.listener.tell(Notice::new(Topic::Report, markdown));
 }
 
+/// A study's progress as the session sees it: each piece done counted on `counter`, and the
+/// session's stop flag (Ctrl-C or SIGTERM) heard before each run.
+struct Watched<'a> {
+    counter: &'a Counter,
+    session: &'a Session,
+}
+
+impl Progress for Watched<'_> {
+    fn done(&self) {
+        self.counter.inc();
+    }
+
+    fn stopped(&self) -> bool {
+        self.session.stop.load(Ordering::SeqCst)
+    }
+}
+
 /// `rope study`: the grid, the reference, the findings and charts; optionally a recording.
-pub fn study(args: &StudyArgs, session: &Session) -> Result<(), ServiceError> {
+/// Stopped (Ctrl-C or SIGTERM), it starts no more runs, lets those under way finish, writes
+/// nothing and ends [`Verdict::Interrupted`]; otherwise [`Verdict::Ok`].
+pub fn study(args: &StudyArgs, session: &Session) -> Result<Verdict, ServiceError> {
+    match dispatch(args, session) {
+        Ok(()) => Ok(Verdict::Ok),
+        Err(ServiceError::Failed(err)) if err.downcast_ref::<Stopped>().is_some() => {
+            // The check's references are the runs a folder of kept runs keeps.
+            let cache = std::env::var_os(crate::study::run_cache::ENV)
+                .filter(|dir| !dir.is_empty() && args.tolerance_check.is_some());
+            let kept = match cache {
+                Some(dir) => format!(
+                    "; the reference runs it finished are kept in {} and will be read back",
+                    std::path::Path::new(&dir).display()
+                ),
+                None => String::new(),
+            };
+            say(
+                session,
+                format!(
+                    "rope study: stopped before its last run; nothing was written to {}{kept}",
+                    args.out.display()
+                ),
+            );
+            Ok(Verdict::Interrupted)
+        }
+        Err(err) => Err(err),
+    }
+}
+
+/// The study `args` asks for, to its end or its first error.
+fn dispatch(args: &StudyArgs, session: &Session) -> Result<(), ServiceError> {
     if let Some(duration) = args.long_run {
         return long_runs(session, args, duration);
     }
@@ -81,7 +131,19 @@ pub fn study(args: &StudyArgs, session: &Session) -> Result<(), ServiceError> {
         .map(|p| crate::cli::reference_file(p, &plan))
         .transpose()?;
     if args.reference_only {
-        let path = crate::study::execute_reference_only(spec, plan.reference_segments, &args.out)?;
+        let counter = Counter::new(1, "rope study", "references");
+        let progress = Watched {
+            counter: &counter,
+            session,
+        };
+        let path = crate::study::execute_reference_only(
+            spec,
+            plan.reference_segments,
+            &args.out,
+            &progress,
+        );
+        counter.finish();
+        let path = path?;
         say(
             session,
             format!(
@@ -118,17 +180,22 @@ pub fn study(args: &StudyArgs, session: &Session) -> Result<(), ServiceError> {
         );
     }
     let counter = Counter::new(cells, "rope study", "runs");
+    let progress = Watched {
+        counter: &counter,
+        session,
+    };
     let command = &session.command;
     if let Some(shard) = args.shard {
-        crate::study::execute_shard(
+        let ran = crate::study::execute_shard(
             spec,
             shard,
             reference,
             plan.reference_segments,
             &args.out,
-            || counter.inc(),
-        )?;
+            &progress,
+        );
         counter.finish();
+        ran?;
         say(
             session,
             format!(
@@ -140,15 +207,12 @@ pub fn study(args: &StudyArgs, session: &Session) -> Result<(), ServiceError> {
     }
     let outcome = match reference {
         Some(file) => {
-            crate::study::execute_with(spec, file.reference(), &args.out, command, || {
-                counter.inc()
-            })?
+            crate::study::execute_with(spec, file.reference(), &args.out, command, &progress)
         }
-        None => crate::study::execute(spec, plan.reference_segments, &args.out, command, || {
-            counter.inc()
-        })?,
+        None => crate::study::execute(spec, plan.reference_segments, &args.out, command, &progress),
     };
     counter.finish();
+    let outcome = outcome?;
     if let Some(path) = &args.save {
         let rec = rerun::RecordingStreamBuilder::new("rope-study")
             .save(path)
@@ -193,12 +257,19 @@ fn long_runs(session: &Session, args: &StudyArgs, duration: f64) -> Result<(), S
         "rope study",
         "time units",
     );
-    let command = &session.command;
-    let markdown =
-        crate::study::execute_long_runs(&plan.runs, duration, &args.out, command, || {
-            counter.inc()
-        })?;
+    let progress = Watched {
+        counter: &counter,
+        session,
+    };
+    let markdown = crate::study::execute_long_runs(
+        &plan.runs,
+        duration,
+        &args.out,
+        &session.command,
+        &progress,
+    );
     counter.finish();
+    let markdown = markdown?;
     report(session, markdown);
     wrote(
         session,
@@ -259,10 +330,14 @@ fn estimate_check(session: &Session, args: &StudyArgs) -> Result<(), ServiceErro
         "rope study",
         "references and runs",
     );
-    let command = &session.command;
+    let progress = Watched {
+        counter: &counter,
+        session,
+    };
     let markdown =
-        crate::study::execute_estimate_check(&spec, &args.out, command, || counter.inc())?;
+        crate::study::execute_estimate_check(&spec, &args.out, &session.command, &progress);
     counter.finish();
+    let markdown = markdown?;
     report(session, markdown);
     wrote(
         session,
@@ -335,11 +410,14 @@ fn tolerance_check(
         ),
     );
     let counter = Counter::new(runs as u64, "rope study", "references, runs and choices");
+    let progress = Watched {
+        counter: &counter,
+        session,
+    };
     let markdown =
-        crate::study::execute_tolerance_check(&spec, &read, &args.out, &session.command, || {
-            counter.inc()
-        })?;
+        crate::study::execute_tolerance_check(&spec, &read, &args.out, &session.command, &progress);
     counter.finish();
+    let markdown = markdown?;
     report(session, markdown);
     wrote(
         session,
@@ -363,10 +441,14 @@ fn blow_up(session: &Session, args: &StudyArgs, duration: f64) -> Result<(), Ser
         ),
     );
     let counter = Counter::new(runs, "rope study", "runs");
-    let command = &session.command;
+    let progress = Watched {
+        counter: &counter,
+        session,
+    };
     let markdown =
-        crate::study::execute_blow_up(&scene, duration, &args.out, command, || counter.inc())?;
+        crate::study::execute_blow_up(&scene, duration, &args.out, &session.command, &progress);
     counter.finish();
+    let markdown = markdown?;
     report(session, markdown);
     wrote(session, "blow_up.md, blow_up.csv and the charts", &args.out);
     Ok(())

@@ -2,6 +2,7 @@
 //! grows first. Its time to divergence over N × k (up to T time units), and the grid-scale
 //! sawtooth along the free end at a few instants before the blow-up, N = 100.
 
+use super::progress::{Progress, Stopped};
 use crate::methods::{MethodKind, Observation, REPORT};
 use crate::model::Scene;
 use crate::run::simulate;
@@ -37,23 +38,29 @@ pub fn cells() -> Vec<(usize, f64)> {
 }
 
 /// The report's method from `scene` over [`SEGMENTS`] × [`FRACTIONS`], each run to
-/// `duration` or its divergence, in parallel. `tick` is called once per run done.
-pub fn lifetimes(scene: &Scene, duration: f64, tick: impl Fn() + Sync) -> Vec<Lifetime> {
+/// `duration` or its divergence, in parallel. `progress` counts each run, and may stop them
+/// before the next ([`Stopped`]).
+pub fn lifetimes(
+    scene: &Scene,
+    duration: f64,
+    progress: &impl Progress,
+) -> Result<Vec<Lifetime>, Stopped> {
     let method = REPORT.method;
     cells()
         .par_iter()
         .map(|&(segments, dt)| {
+            progress.check()?;
             let diverged_at = method.build(scene, segments, dt).ok().and_then(|mut m| {
                 simulate::run_to(m.as_mut(), duration)
                     .diverged
                     .map(|d| d.time)
             });
-            tick();
-            Lifetime {
+            progress.done();
+            Ok(Lifetime {
                 segments,
                 dt,
                 diverged_at,
-            }
+            })
         })
         .collect()
 }

@@ -5,6 +5,7 @@
 //! at every step and interpolated to the frame's time). The same data fit each method's
 //! error model over all the scenes, with its safety factor measured.
 
+use super::progress::{Progress, Stopped};
 pub use super::trajectory::Trajectory;
 use crate::error::Diverged;
 use crate::methods::MethodKind;
@@ -175,15 +176,16 @@ pub fn run_cell(
     cell
 }
 
-/// The whole check: a reference per scene, then every cell, in parallel. `tick` is called
-/// once per reference and once per cell.
-pub fn check(spec: &CheckSpec, tick: impl Fn() + Sync) -> anyhow::Result<Vec<Cell>> {
+/// The whole check: a reference per scene, then every cell, in parallel. `progress` counts
+/// each reference and each cell, and may stop the check before the next run ([`Stopped`]).
+pub fn check(spec: &CheckSpec, progress: &impl Progress) -> anyhow::Result<Vec<Cell>> {
     let references = spec
         .scenes
         .par_iter()
         .map(|scene| {
+            progress.check()?;
             let r = Trajectory::compute(scene, spec.reference_segments, spec.duration);
-            tick();
+            progress.done();
             r
         })
         .collect::<anyhow::Result<Vec<_>>>()?;
@@ -197,11 +199,12 @@ pub fn check(spec: &CheckSpec, tick: impl Fn() + Sync) -> anyhow::Result<Vec<Cel
     Ok(cells
         .into_par_iter()
         .map(|(method, s, n)| {
+            progress.check()?;
             let cell = run_cell(method, spec.scenes[s], n, spec.duration, &references[s]);
-            tick();
-            cell
+            progress.done();
+            Ok(cell)
         })
-        .collect())
+        .collect::<Result<Vec<_>, Stopped>>()?)
 }
 
 /// Each method's error model over all the scenes: C h^p fitted to the largest true tip error

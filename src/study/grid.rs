@@ -2,6 +2,7 @@
 //! stability, energy deviation and CPU cost (errors against the reference come later).
 //! The grid runs in parallel (rayon); each run's cost is its own thread's CPU time.
 
+use super::progress::{Progress, Stopped};
 use crate::methods::{MethodKind, Observation};
 use crate::model::Scene;
 use crate::model::geometry::{self, Point};
@@ -207,32 +208,35 @@ pub fn run_cell(scene: &Scene, duration: f64, method: MethodKind, segments: usiz
     row
 }
 
-/// Runs every cell in parallel; `progress` is called after each.
-pub fn run_grid(spec: &Spec, progress: impl Fn() + Sync) -> Vec<Row> {
+/// Runs every cell in parallel; `progress` counts each, and may stop the grid before its
+/// next run ([`Stopped`]).
+pub fn run_grid(spec: &Spec, progress: &impl Progress) -> Result<Vec<Row>, Stopped> {
     run_cells(spec, spec.cells(), progress)
 }
 
 /// Runs `cells` of `spec`'s grid in parallel, the most expensive first (so the parallel tail
-/// is short); `progress` is called after each. The rows come sorted by method, N and k.
+/// is short); `progress` counts each, and may stop the grid before its next run. The rows
+/// come sorted by method, N and k.
 pub fn run_cells(
     spec: &Spec,
     mut cells: Vec<(MethodKind, usize, f64)>,
-    progress: impl Fn() + Sync,
-) -> Vec<Row> {
+    progress: &impl Progress,
+) -> Result<Vec<Row>, Stopped> {
     let cost =
         |&(m, n, dt): &(MethodKind, usize, f64)| m.descriptor().ns_per_segment_step * n as f64 / dt;
     cells.sort_by(|a, b| cost(b).total_cmp(&cost(a)));
-    let mut rows: Vec<Row> = cells
+    let mut rows = cells
         .into_par_iter()
         .with_max_len(1) // one run per task, so that stealing balances runs of unequal cost
         .map(|(m, n, dt)| {
+            progress.check()?;
             let row = run_cell(&spec.scene, spec.duration, m, n, dt);
-            progress();
-            row
+            progress.done();
+            Ok(row)
         })
-        .collect();
+        .collect::<Result<Vec<Row>, Stopped>>()?;
     sort_rows(&mut rows);
-    rows
+    Ok(rows)
 }
 
 /// The rows' order in `study.csv`: by method name, N, then k.

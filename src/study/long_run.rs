@@ -4,6 +4,7 @@
 //! kept as the largest in each of 50 log-spaced bins per decade of t, the least-squares slope of E(t), the largest joint gap
 //! (for `rattle`), and where a method diverged.
 
+use super::progress::Progress;
 use crate::error::Diverged;
 use crate::methods::{MethodKind, REPORT, StepStatistics};
 use crate::model::Scene;
@@ -115,14 +116,15 @@ pub fn runs(
     runs
 }
 
-/// Swings `method` from `scene` for `duration` time units at N = 100 and step `dt`; calls
-/// `tick` once per time unit simulated.
+/// Swings `method` from `scene` for `duration` time units at N = 100 and step `dt`;
+/// `progress` counts each time unit simulated, and may stop the run at the next
+/// ([`Stopped`](super::Stopped)).
 pub fn run(
     method: MethodKind,
     scene: Scene,
     dt: f64,
     duration: f64,
-    tick: impl Fn(),
+    progress: &impl Progress,
 ) -> anyhow::Result<LongRun> {
     let segments = REPORT.segments;
     let mut stepper = method.build(&scene, segments, dt)?;
@@ -158,14 +160,18 @@ pub fn run(
         bins[i].max_abs_deviation = bins[i].max_abs_deviation.max(deviation.abs());
         while frame.time >= units + 1.0 {
             units += 1.0;
-            tick();
+            progress.done();
         }
-        ControlFlow::Continue(())
+        match progress.stopped() {
+            true => ControlFlow::Break(()),
+            false => ControlFlow::Continue(()),
+        }
     });
+    progress.check()?;
     bins.retain(|b| b.t > 0.0);
     // A run that ended early has no more work to show.
     for _ in (units as u64)..(duration.ceil() as u64) {
-        tick();
+        progress.done();
     }
     Ok(LongRun {
         method,

@@ -30,6 +30,7 @@ pub mod findings;
 pub mod grid;
 pub mod long_charts;
 pub mod long_run;
+pub mod progress;
 pub mod read_reference;
 pub mod record;
 pub mod reference;
@@ -45,6 +46,7 @@ pub mod tolerance_table;
 pub mod trajectory;
 
 pub use grid::{Row, Spec, Status, fit, run_cell, run_grid, shape};
+pub use progress::{Progress, Stopped};
 pub use reference::{Reference, measure_errors, reference};
 
 use crate::methods::{MethodKind, REPORT};
@@ -92,16 +94,17 @@ pub fn cost_of(
 
 /// Runs the reference and the grid, measures every run against the reference, and writes
 /// `study.csv`, `findings.md` and the charts into `out`. `command` is the command line to
-/// cite in the findings.
+/// cite in the findings. `progress` counts the runs, and may stop the study before its files
+/// ([`Stopped`]).
 pub fn execute(
     spec: &Spec,
     reference_segments: usize,
     out: &Path,
     command: &str,
-    progress: impl Fn() + Sync,
+    progress: &impl Progress,
 ) -> anyhow::Result<Outcome> {
     create_dir(out)?;
-    let reference = reference(&spec.scene, spec.duration, reference_segments)?;
+    let reference = reference(&spec.scene, spec.duration, reference_segments, progress)?;
     execute_with(spec, reference, out, command, progress)
 }
 
@@ -111,31 +114,37 @@ pub fn execute_with(
     reference: Reference,
     out: &Path,
     command: &str,
-    progress: impl Fn() + Sync,
+    progress: &impl Progress,
 ) -> anyhow::Result<Outcome> {
     create_dir(out)?;
-    let mut rows = run_grid(spec, progress);
+    let mut rows = run_grid(spec, progress)?;
     measure_errors(&mut rows, &reference);
     finish(spec, reference, rows, out, command)
 }
 
 /// Computes the reference alone and writes it to `out/reference.json`, for shards to share
-/// (`--reference FILE`). Returns the file's path.
+/// (`--reference FILE`). Returns the file's path. `progress` may stop it before the file
+/// ([`Stopped`]).
 pub fn execute_reference_only(
     spec: &Spec,
     reference_segments: usize,
     out: &Path,
+    progress: &impl Progress,
 ) -> anyhow::Result<std::path::PathBuf> {
     create_dir(out)?;
-    let file = reference_file(spec, reference_segments)?;
+    let file = reference_file(spec, reference_segments, progress)?;
     let path = out.join(shard::REFERENCE);
     write(&path, &serde_json::to_string_pretty(&file)?)?;
     Ok(path)
 }
 
 /// The reference of `spec` at `reference_segments`, computed, as a file holds it.
-fn reference_file(spec: &Spec, reference_segments: usize) -> anyhow::Result<shard::ReferenceFile> {
-    let r = reference(&spec.scene, spec.duration, reference_segments)?;
+fn reference_file(
+    spec: &Spec,
+    reference_segments: usize,
+    progress: &impl Progress,
+) -> anyhow::Result<shard::ReferenceFile> {
+    let r = reference(&spec.scene, spec.duration, reference_segments, progress)?;
     Ok(shard::ReferenceFile::new(
         spec.scene,
         spec.duration,
@@ -153,15 +162,15 @@ pub fn execute_shard(
     reference: Option<shard::ReferenceFile>,
     reference_segments: usize,
     out: &Path,
-    progress: impl Fn() + Sync,
+    progress: &impl Progress,
 ) -> anyhow::Result<Vec<Row>> {
     use anyhow::Context as _;
     create_dir(out)?;
     let reference = match reference {
         Some(file) => file,
-        None => reference_file(spec, reference_segments)?,
+        None => reference_file(spec, reference_segments, progress)?,
     };
-    let mut rows = grid::run_cells(spec, shard.cells(spec), progress);
+    let mut rows = grid::run_cells(spec, shard.cells(spec), progress)?;
     measure_errors(&mut rows, &reference.reference());
     let csv = out.join("study.csv");
     report::write_csv(&rows, &csv).with_context(|| format!("writing {}", csv.display()))?;
@@ -242,14 +251,14 @@ fn write(path: &Path, text: &str) -> anyhow::Result<()> {
 
 /// Makes the long `runs` (method, scene, step; see [`long_run::runs`]) for `duration` time
 /// units (in parallel, a core each), and writes `long_run.csv`, `long_run.md` and the chart
-/// `long_run.svg`/`.png` into `out`. Returns the Markdown. `tick` is called once per time
-/// unit simulated, by any run.
+/// `long_run.svg`/`.png` into `out`. Returns the Markdown. `progress` counts each time unit
+/// simulated, by any run, and may stop the runs before their files ([`Stopped`]).
 pub fn execute_long_runs(
     runs: &[(MethodKind, crate::model::Scene, f64)],
     duration: f64,
     out: &Path,
     command: &str,
-    tick: impl Fn() + Sync,
+    progress: &impl Progress,
 ) -> anyhow::Result<String> {
     use anyhow::Context as _;
     use rayon::prelude::*;
@@ -267,11 +276,11 @@ pub fn execute_long_runs(
         }
     }
     for _ in 0..left_out.len() as u64 * duration.ceil() as u64 {
-        tick();
+        progress.done();
     }
     let runs = startable
         .par_iter()
-        .map(|&(m, s, dt)| long_run::run(m, s, dt, duration, &tick))
+        .map(|&(m, s, dt)| long_run::run(m, s, dt, duration, progress))
         .collect::<anyhow::Result<Vec<_>>>()?;
     let csv = out.join("long_run.csv");
     long_run::write_csv(&runs, &csv).with_context(|| format!("writing {}", csv.display()))?;
@@ -284,17 +293,19 @@ pub fn execute_long_runs(
 
 /// The report's method's time to divergence over N × k, and its sawtooth before the blow-up
 /// at N = 100 and its default step; writes `blow_up.md`, `blow_up.csv` and the charts
-/// `divergence_map` and `sawtooth` into `out`. Returns the Markdown.
+/// `divergence_map` and `sawtooth` into `out`. Returns the Markdown. `progress` counts the
+/// runs, and may stop them before their files ([`Stopped`]).
 pub fn execute_blow_up(
     scene: &crate::model::Scene,
     duration: f64,
     out: &Path,
     command: &str,
-    tick: impl Fn() + Sync,
+    progress: &impl Progress,
 ) -> anyhow::Result<String> {
     use anyhow::Context as _;
     create_dir(out)?;
-    let lifetimes = blow_up::lifetimes(scene, duration, tick);
+    let lifetimes = blow_up::lifetimes(scene, duration, progress)?;
+    progress.check()?;
     let dt = REPORT.method.default_dt(REPORT.segments);
     let saw = blow_up::sawtooth(scene, dt, duration)?;
     let csv_path = out.join("blow_up.csv");
@@ -313,16 +324,17 @@ pub fn execute_blow_up(
 
 /// The live error estimate of each cell of `spec` against the truth; writes
 /// `estimate_check.md`, `estimate_check.csv` and the chart `estimate_check.png` into `out`.
-/// Returns the Markdown. `tick` is called once per reference and once per cell.
+/// Returns the Markdown. `progress` counts each reference and each cell, and may stop the
+/// check before its files ([`Stopped`]).
 pub fn execute_estimate_check(
     spec: &estimate_check::CheckSpec,
     out: &Path,
     command: &str,
-    tick: impl Fn() + Sync,
+    progress: &impl Progress,
 ) -> anyhow::Result<String> {
     use anyhow::Context as _;
     create_dir(out)?;
-    let cells = estimate_check::check(spec, tick)?;
+    let cells = estimate_check::check(spec, progress)?;
     let csv = out.join("estimate_check.csv");
     estimate_check::write_csv(&cells, &csv)
         .with_context(|| format!("writing {}", csv.display()))?;
@@ -336,18 +348,18 @@ pub fn execute_estimate_check(
 /// What `--tolerance` chooses in each scene of `spec` (its references read from `read` where
 /// they can judge it), against the truth and the grid's cheapest run; writes
 /// `tolerance_check.md`, the references' tips (`references.csv`) and the chart
-/// `tolerance_check.svg`/`.png` into `out`. Returns the Markdown. `tick` is called
-/// once per reference, run and choice.
+/// `tolerance_check.svg`/`.png` into `out`. Returns the Markdown. `progress` counts each
+/// reference, run and choice, and may stop the check before its files ([`Stopped`]).
 pub fn execute_tolerance_check(
     spec: &tolerance_check::CheckSpec,
     read: &[read_reference::ReadReference],
     out: &Path,
     command: &str,
-    tick: impl Fn() + Sync,
+    progress: &impl Progress,
 ) -> anyhow::Result<String> {
     create_dir(out)?;
     use anyhow::Context as _;
-    let checked = tolerance_check::check(spec, read, tick)?;
+    let checked = tolerance_check::check(spec, read, progress)?;
     let csv = out.join("references.csv");
     tip_reference::write_references(&csv, &checked.references, spec.duration)
         .with_context(|| format!("writing {}", csv.display()))?;

@@ -3,6 +3,7 @@
 //! can be measured against it at every frame.
 
 use super::grid::{FRAMES_PER_UNIT, Row, shape};
+use super::progress::Progress;
 use super::trajectory::{Kept, Trajectory, frame_times};
 use crate::methods::MethodKind;
 use crate::model::{Point, Scene};
@@ -50,15 +51,22 @@ pub fn reference_runs(finest: usize) -> [(MethodKind, usize, f64); 3] {
 /// The reference: [`MethodKind::REFERENCE`] at `finest` and `finest / 2` segments,
 /// extrapolated in N by Richardson (x + (x − x_half) / (2^p − 1), p its order: 2 for the
 /// chain) at every step of the finest run, with the time step checked by halving it at the
-/// finest N. Its own errors are the largest over the frames.
-pub fn reference(scene: &Scene, duration: f64, finest: usize) -> anyhow::Result<Reference> {
+/// finest N. Its own errors are the largest over the frames. `progress` may stop its runs
+/// partway ([`super::Stopped`]).
+pub fn reference(
+    scene: &Scene,
+    duration: f64,
+    finest: usize,
+    progress: &impl Progress,
+) -> anyhow::Result<Reference> {
+    use anyhow::Context as _;
     let runs = reference_runs(finest);
     let [(method, _, dt), (_, coarse_n, _), _] = runs;
     let kept: Vec<Kept> = runs
         .into_par_iter()
         .map(|(method, n, dt)| {
-            Trajectory::keep(scene, method, n, dt, duration)
-                .map_err(|e| anyhow::anyhow!("the reference: {e}"))
+            Trajectory::keep_stoppable(scene, method, n, dt, duration, progress)
+                .context("the reference")
         })
         .collect::<anyhow::Result<_>>()?;
     let [fine, coarse, halved]: [Kept; 3] = kept

@@ -5,6 +5,7 @@
 //! its default step and at its tolerance step, that also holds EPS. A scene's reference is
 //! computed, or read back from a references file where one can judge the check's smallest EPS.
 
+use super::progress::{Progress, Stopped};
 use super::read_reference::{CheckReference, ReadReference};
 pub use super::tip_reference::JUDGE_RATE;
 pub use super::tip_reference::LOG_RATE;
@@ -398,12 +399,12 @@ pub fn best_read<'a>(read: &'a [ReadReference], scene: &Scene) -> Option<&'a Rea
 
 /// The whole check: a reference per scene (read from `read` where it has one, [`best_read`], else
 /// computed, the scenes' in parallel), then each scene's grid and each tolerance's choice one run
-/// at a time, so that their wall seconds are one thread's. `tick` is called once per reference and
-/// once per run.
+/// at a time, so that their wall seconds are one thread's. `progress` counts each reference and
+/// each run, and may stop the check before the next ([`Stopped`]).
 pub fn check(
     spec: &CheckSpec,
     read: &[ReadReference],
-    tick: impl Fn() + Sync,
+    progress: &impl Progress,
 ) -> anyhow::Result<Checked> {
     let mut cells = Vec::new();
     let smallest = spec.smallest_tolerance();
@@ -413,9 +414,10 @@ pub fn check(
         .par_iter()
         .map(|scene| {
             if let Some(read) = best_read(read, scene) {
-                tick();
+                progress.done();
                 return Ok(CheckReference::Read(read.clone()));
             }
+            progress.check()?;
             let target = REFERENCE_MARGIN * smallest;
             let reference = TipReference::refined_by(
                 reference_method(scene, spec.duration),
@@ -426,20 +428,23 @@ pub fn check(
                 spec.duration,
             )?
             .refined_where_reachable(target, spec.reference_segments_reach)?;
-            tick();
+            progress.done();
             Ok(CheckReference::Computed(reference))
         })
         .collect::<anyhow::Result<Vec<_>>>()?;
     for reference in &references {
         let scene = &reference.scene();
         // `method`'s runs at N = `n`, one at each of its grid steps (those that finished).
-        let runs_at = |method: MethodKind, n: usize| -> Vec<Measured> {
+        let runs_at = |method: MethodKind, n: usize| -> Result<Vec<Measured>, Stopped> {
             grid_steps(method, n)
                 .into_iter()
                 .filter_map(|dt| {
+                    if let Err(stopped) = progress.check() {
+                        return Some(Err(stopped));
+                    }
                     let run = measure(method, scene, n, dt, spec.duration, None, reference);
-                    tick();
-                    run
+                    progress.done();
+                    run.map(Ok)
                 })
                 .collect()
         };
@@ -451,7 +456,7 @@ pub fn check(
         for method in choice::startable(scene, spec.duration) {
             let mut cheapest_holding = f64::INFINITY;
             for &n in &spec.grid {
-                let runs = runs_at(method, n);
+                let runs = runs_at(method, n)?;
                 let seconds = |held: bool| {
                     runs.iter()
                         .filter(|r| !held || r.worst <= smallest)
@@ -478,7 +483,7 @@ pub fn check(
                 break;
             }
             for method in choice::startable(scene, spec.duration) {
-                grid.extend(runs_at(method, n));
+                grid.extend(runs_at(method, n)?);
             }
         }
         for &eps in &spec.tolerances {
@@ -503,6 +508,7 @@ pub fn check(
                 cells.push(cell);
                 continue;
             }
+            progress.check()?;
             // Planned as `rope run --tolerance EPS` plans it, frames at [`LOG_RATE`]: its
             // pilots may fly as the run, and the one that holds is then not flown again.
             let request = request(eps, spec.duration);
@@ -523,7 +529,7 @@ pub fn check(
                 Ok((None, _)) => cell.skipped = Some("no choice was made".to_owned()),
                 Err(err) => cell.skipped = Some(err.to_string()),
             }
-            tick();
+            progress.done();
             cells.push(cell);
         }
     }

@@ -1,0 +1,97 @@
+//! A study stopped by Ctrl-C or SIGTERM: it starts no more runs, writes nothing, says so and
+//! ends as interrupted (exit status 130). Its files are made from every run or not at all.
+
+mod common;
+
+use clap::Parser as _;
+use common::cli::{Scratch, signal_and_wait, start};
+use rope::cli::{Cli, Command, StudyArgs};
+use rope::run::Verdict;
+use rope::service::notices::Collected;
+use rope::service::{Session, study};
+use std::io::Read as _;
+use std::sync::Arc;
+use std::sync::atomic::Ordering;
+use std::time::Duration;
+
+fn study_args(args: &[&str]) -> StudyArgs {
+    let mut full = vec!["rope", "study"];
+    full.extend_from_slice(args);
+    match Cli::try_parse_from(&full).expect("the flags parse").command {
+        Command::Study(args) => args,
+        Command::Run(_) => unreachable!(),
+    }
+}
+
+/// Every kind of study, stopped before its first run: none writes a file into its folder,
+/// and each says that it wrote nothing.
+#[test]
+fn each_study_stopped_before_it_starts_writes_nothing_and_ends_interrupted() {
+    let dir = Scratch::new("study-stopped");
+    let kinds: [&[&str]; 5] = [
+        &[
+            "--segments",
+            "10,20",
+            "--dts",
+            "1e-2",
+            "--reference-segments",
+            "40",
+        ],
+        &["--long-run", "5"],
+        &["--blow-up", "5"],
+        &["--estimate-check"],
+        &["--tolerance-check", "quick"],
+    ];
+    for (i, flags) in kinds.iter().enumerate() {
+        let out = dir.path(&i.to_string());
+        let mut all = flags.to_vec();
+        all.extend(["--out", out.to_str().unwrap()]);
+        let heard = Arc::new(Collected::default());
+        let session = Session::new(heard.clone(), "rope (a test)");
+        session.stop.store(true, Ordering::SeqCst);
+        let verdict = study::study(&study_args(&all), &session).expect("the study ends");
+        assert_eq!(verdict, Verdict::Interrupted, "{flags:?}");
+        let written: Vec<_> = std::fs::read_dir(&out)
+            .map(|d| d.flatten().map(|e| e.file_name()).collect())
+            .unwrap_or_default();
+        assert!(written.is_empty(), "{flags:?} wrote {written:?}");
+        let said: Vec<String> = heard.notices().into_iter().map(|n| n.text).collect();
+        assert!(
+            said.iter().any(|t| t.contains("nothing was written")),
+            "{flags:?}: {said:?}"
+        );
+    }
+}
+
+/// `rope study` given SIGINT while its grid runs: it ends with status 130, without
+/// `study.csv` or its findings, and says why.
+#[test]
+fn sigint_mid_study_ends_it_interrupted_with_nothing_written() {
+    let dir = Scratch::new("study-sigint");
+    let out = dir.path("out");
+    // A reference at N = 200 (about 9 s of wall on 2 cores) and 16 runs of 30 time units
+    // (4 s more): the signal comes while the reference runs, which stops it there.
+    let mut child = start(&[
+        "study",
+        "--duration",
+        "30",
+        "--segments",
+        "50,100",
+        "--dts",
+        "1e-3,5e-4",
+        "--reference-segments",
+        "200",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    std::thread::sleep(Duration::from_millis(1500));
+    let (status, _) = signal_and_wait(&mut child, "-INT", Duration::from_secs(120));
+    let mut said = String::new();
+    if let Some(mut stderr) = child.stderr.take() {
+        stderr.read_to_string(&mut said).unwrap();
+    }
+    assert_eq!(status.code(), Some(130), "{said}");
+    assert!(said.contains("nothing was written"), "{said}");
+    assert!(!out.join("study.csv").exists(), "{said}");
+    assert!(!out.join("findings.md").exists(), "{said}");
+}
