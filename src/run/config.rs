@@ -193,8 +193,8 @@ impl RunConfig {
     /// Refuses a run whose memory exceeds the limit, or a finite one longer than a day
     /// without `--yes`.
     fn check_cost(&self, cost: &Cost, dt: f64) -> Result<(), ConfigError> {
-        let limit = self.limits.memory();
-        if cost.bytes > limit {
+        if !self.limits.fits(cost.bytes) {
+            let limit = self.limits.memory();
             return Err(ConfigError::TooMuchMemory {
                 segments: self.segments,
                 needed: cost::bytes_text(cost.bytes),
