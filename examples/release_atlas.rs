@@ -223,6 +223,7 @@ fn main() -> anyhow::Result<()> {
                         most,
                         refined_to,
                         window,
+                        &|| (),
                     )?)
                 }
             };
@@ -253,7 +254,7 @@ fn main() -> anyhow::Result<()> {
                     "{set} {angle_deg}°: own error {:.1e} at N = {}; doubled",
                     computed.own_error, computed.segments
                 );
-                reference = CheckReference::Computed(computed.clone().doubled()?);
+                reference = CheckReference::Computed(computed.clone().doubled(&|| ())?);
                 worst = row(&reference);
             }
             let own = reference.own_error();

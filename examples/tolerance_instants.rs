@@ -108,7 +108,7 @@ fn main() -> anyhow::Result<()> {
                     Scene::Shake { .. } => (128, 512, 1e-5f64.min(smallest * REFERENCE_MARGIN)),
                     _ => (1600, 3200, 1e-5),
                 };
-                let r = TipReference::refined_by(method, scene, from, most, target, duration)?;
+                let r = TipReference::refined_by(method, scene, from, most, target, duration, &|| ())?;
                 eprintln!(
                     "{scene}: reference of the {method} method, N = {} (order {:.2}), own error {:.1e} at every 1/{JUDGE_RATE}",
                     r.segments, r.order, r.own_error

@@ -662,7 +662,8 @@ fn graded_rods_from_their_atlas(eps: f64, scene: &Scene, duration: f64) -> choic
 fn graded_reference(angle_deg: f64, duration: f64, own: f64) -> TipReference {
     let scene = Scene::Release { angle_deg };
     let graded = MethodKind::Graded;
-    let reference = TipReference::refined_by(graded, &scene, 1600, 3200, own, duration).unwrap();
+    let reference =
+        TipReference::refined_by(graded, &scene, 1600, 3200, own, duration, &|| ()).unwrap();
     eprintln!(
         "graded reference from {angle_deg}° to t = {duration} at N = {}, {}, {}: order {:.2}, own error {:.1e}",
         reference.segments / 2,

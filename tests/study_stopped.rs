@@ -4,7 +4,7 @@
 mod common;
 
 use clap::Parser as _;
-use common::cli::{Scratch, signal_and_wait, start};
+use common::cli::{ROPE, Scratch, signal_and_wait, start};
 use rope::cli::{Cli, Command, StudyArgs};
 use rope::run::Verdict;
 use rope::service::notices::Collected;
@@ -94,4 +94,39 @@ fn sigint_mid_study_ends_it_interrupted_with_nothing_written() {
     assert!(said.contains("nothing was written"), "{said}");
     assert!(!out.join("study.csv").exists(), "{said}");
     assert!(!out.join("findings.md").exists(), "{said}");
+}
+
+/// `rope study --tolerance-check quick` given SIGINT while its references run (the runs at
+/// N = 400, 800 and 1 600 to t = 3, kept in a folder of kept runs): the run at N = 1 600,
+/// some 18 s of CPU, stops partway, so it is not kept, and the check ends with 130.
+#[test]
+fn sigint_during_the_checks_references_stops_their_runs_partway() {
+    let dir = Scratch::new("check-sigint");
+    let (out, kept) = (dir.path("out"), dir.path("kept"));
+    let mut child = std::process::Command::new(ROPE)
+        .args(["study", "--tolerance-check", "quick", "--out"])
+        .arg(&out)
+        .env(rope::study::run_cache::ENV, &kept)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("the rope binary runs");
+    std::thread::sleep(Duration::from_millis(1500));
+    let (status, _) = signal_and_wait(&mut child, "-INT", Duration::from_secs(120));
+    let mut said = String::new();
+    if let Some(mut stderr) = child.stderr.take() {
+        stderr.read_to_string(&mut said).unwrap();
+    }
+    assert_eq!(status.code(), Some(130), "{said}");
+    assert!(said.contains("nothing was written"), "{said}");
+    let finest: Vec<_> = std::fs::read_dir(&kept)
+        .map(|d| d.flatten().map(|e| e.file_name()).collect())
+        .unwrap_or_default();
+    assert!(
+        !finest
+            .iter()
+            .any(|name| name.to_string_lossy().contains("-1600-")),
+        "the run at N = 1 600 finished: {finest:?}\n{said}"
+    );
+    assert!(!out.join("tolerance_check.md").exists(), "{said}");
 }

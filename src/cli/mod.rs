@@ -61,7 +61,8 @@ Exit status:
   0    the study was written
   1    an error, said
   2    bad input, naming the flag and what would work (a grid none of whose
-       methods can start from the scene among them)";
+       methods can start from the scene among them)
+  130  stopped (Ctrl-C or SIGTERM): no more runs started, nothing written";
 
 /// What to do.
 #[derive(Debug, clap::Subcommand)]

@@ -184,7 +184,13 @@ pub fn check(spec: &CheckSpec, progress: &impl Progress) -> anyhow::Result<Vec<C
         .par_iter()
         .map(|scene| {
             progress.check()?;
-            let r = Trajectory::compute(scene, spec.reference_segments, spec.duration);
+            let r = Trajectory::compute_by(
+                MethodKind::REFERENCE,
+                scene,
+                spec.reference_segments,
+                spec.duration,
+                progress,
+            );
             progress.done();
             r
         })

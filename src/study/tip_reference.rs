@@ -5,6 +5,7 @@
 //! run is measured against, computed here or read back from such a file
 //! ([`read_reference`](super::read_reference)).
 
+use super::progress::Progress;
 use super::trajectory::{Trajectory, frame_times};
 use crate::methods::MethodKind;
 use crate::model::{Point, Scene};
@@ -97,12 +98,12 @@ impl TipReference {
         segments: usize,
         duration: f64,
     ) -> anyhow::Result<Self> {
-        Self::refined_by(method, scene, segments, segments, 0.0, duration)
+        Self::refined_by(method, scene, segments, segments, 0.0, duration, &|| ())
     }
 
     /// The reference of `method`'s runs from N = `segments` (with N/2 and 2N), N then doubled
     /// while its own error is above `target` and N is below `most`: each doubling one more
-    /// run, at 2N.
+    /// run, at 2N. `progress` may stop its runs partway ([`Stopped`](super::Stopped)).
     pub fn refined_by(
         method: MethodKind,
         scene: &Scene,
@@ -110,8 +111,9 @@ impl TipReference {
         most: usize,
         target: f64,
         duration: f64,
+        progress: &impl Progress,
     ) -> anyhow::Result<Self> {
-        let compute = |n| Trajectory::compute_by(method, scene, n, duration);
+        let compute = |n| Trajectory::compute_by(method, scene, n, duration, progress);
         let runs = [segments / 2, segments, 2 * segments]
             .into_par_iter()
             .map(compute)
@@ -123,13 +125,20 @@ impl TipReference {
             target,
             most,
             |_| true,
+            progress,
         )
     }
 
     /// This reference, N doubled on while its own error is above `target`, N is below `most`
     /// and the doubling [`could_reach`](TipReference::could_reach) `target` by `most`.
-    pub fn refined_where_reachable(self, target: f64, most: usize) -> anyhow::Result<Self> {
-        self.doubled_while(target, most, |r| r.could_reach(target, most))
+    /// `progress` may stop its runs partway ([`Stopped`](super::Stopped)).
+    pub fn refined_where_reachable(
+        self,
+        target: f64,
+        most: usize,
+        progress: &impl Progress,
+    ) -> anyhow::Result<Self> {
+        self.doubled_while(target, most, |r| r.could_reach(target, most), progress)
     }
 
     /// This reference, N doubled while its own error is above `target`, 2N is at most `most`
@@ -139,10 +148,11 @@ impl TipReference {
         target: f64,
         most: usize,
         worth: impl Fn(&Self) -> bool,
+        progress: &impl Progress,
     ) -> anyhow::Result<Self> {
         let mut reference = self;
         while reference.own_error > target && 2 * reference.segments <= most && worth(&reference) {
-            reference = reference.doubled()?;
+            reference = reference.doubled(progress)?;
         }
         Ok(reference)
     }
@@ -160,9 +170,16 @@ impl TipReference {
     }
 
     /// This reference made from its runs at N and 2N and one more run, at 4N: its N doubled.
-    pub fn doubled(self) -> anyhow::Result<Self> {
+    /// `progress` may stop that run partway ([`Stopped`](super::Stopped)).
+    pub fn doubled(self, progress: &impl Progress) -> anyhow::Result<Self> {
         let segments = 2 * self.segments;
-        let finer = Trajectory::compute_by(self.method, &self.scene, 2 * segments, self.duration)?;
+        let finer = Trajectory::compute_by(
+            self.method,
+            &self.scene,
+            2 * segments,
+            self.duration,
+            progress,
+        )?;
         Ok(Self::of(
             self.method,
             self.scene,
@@ -368,7 +385,7 @@ mod tests {
             number: 1,
             amplitude: 0.05,
         };
-        let refined = TipReference::refined_by(METHOD, &scene, 16, 64, 0.0, 0.5).unwrap();
+        let refined = TipReference::refined_by(METHOD, &scene, 16, 64, 0.0, 0.5, &|| ()).unwrap();
         let direct = TipReference::compute_by(METHOD, &scene, 64, 0.5).unwrap();
         assert_eq!(refined.segments, 64);
         assert_eq!(refined.order, direct.order);
@@ -377,7 +394,7 @@ mod tests {
             assert_eq!(refined.at(t), direct.at(t), "t = {t}");
         }
         // Short of its target, the doubling stops at the largest N allowed.
-        let capped = TipReference::refined_by(METHOD, &scene, 16, 63, 0.0, 0.5).unwrap();
+        let capped = TipReference::refined_by(METHOD, &scene, 16, 63, 0.0, 0.5, &|| ()).unwrap();
         assert_eq!(capped.segments, 16 * 2);
     }
 

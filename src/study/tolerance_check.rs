@@ -426,8 +426,13 @@ pub fn check(
                 spec.reference_segments_max,
                 target,
                 spec.duration,
+                progress,
             )?
-            .refined_where_reachable(target, spec.reference_segments_reach)?;
+            .refined_where_reachable(
+                target,
+                spec.reference_segments_reach,
+                progress,
+            )?;
             progress.done();
             Ok(CheckReference::Computed(reference))
         })

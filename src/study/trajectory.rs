@@ -45,22 +45,25 @@ impl Trajectory {
     /// [`MethodKind::REFERENCE`] at `segments` and its default step, from `scene` to
     /// `duration`.
     pub fn compute(scene: &Scene, segments: usize, duration: f64) -> anyhow::Result<Self> {
-        Self::compute_by(MethodKind::REFERENCE, scene, segments, duration)
+        Self::compute_by(MethodKind::REFERENCE, scene, segments, duration, &|| ())
     }
 
     /// `method` at `segments` and its default step, from `scene` to `duration`; read back
     /// instead where a folder of kept runs holds it, and kept there once run
-    /// ([`super::run_cache`]).
+    /// ([`super::run_cache`]). `progress` may stop the run partway
+    /// ([`Stopped`](super::Stopped)); nothing is kept then.
     pub fn compute_by(
         method: MethodKind,
         scene: &Scene,
         segments: usize,
         duration: f64,
+        progress: &impl Progress,
     ) -> anyhow::Result<Self> {
         let dt = method.default_dt(segments);
         let kept = run_cache::Kept::of(method, scene, segments, dt, duration);
         let (dt, tips) = run_cache::computed_or_kept(kept, || {
-            let run = Self::keep(scene, method, segments, dt, duration)?.trajectory;
+            let run =
+                Self::keep_stoppable(scene, method, segments, dt, duration, progress)?.trajectory;
             Ok((run.dt, run.tips))
         })?;
         Ok(Self::new(dt, tips))
