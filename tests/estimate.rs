@@ -135,6 +135,39 @@ fn a_run_whose_estimate_passes_its_tolerance_says_so_once_and_when() {
 }
 
 #[test]
+fn a_run_interrupted_before_its_end_does_not_say_its_tolerance_was_met() {
+    let plan = RunConfig {
+        method: MethodKind::Chain,
+        segments: 20,
+        duration: 2.0,
+        tolerance: Some(1.0),
+        ..RunConfig::default()
+    }
+    .validate()
+    .unwrap();
+    // Stopped as the frame at t = 0.5 comes: the estimate held 1.0 to there, and so it did
+    // to the end uninterrupted (above).
+    let stop = AtomicBool::new(false);
+    let stop_at_half = |frame: &rope::run::Frame| {
+        if frame.time >= 0.5 {
+            stop.store(true, std::sync::atomic::Ordering::SeqCst);
+        }
+    };
+    let (mut tx, _rx) = crossbeam_channel::unbounded();
+    let summary = pipeline::run(&plan, &mut tx, &stop, &stop_at_half).unwrap();
+    assert_eq!(summary.status, rope::run::summary::Status::Interrupted);
+    let reached = summary.steps as f64 * summary.dt;
+    assert!((0.5..2.0).contains(&reached), "{reached}");
+    assert_eq!(summary.tolerance_met, None);
+    assert_eq!(summary.verdict(), Verdict::Interrupted);
+    let text = summary.human();
+    assert!(
+        text.contains("tolerance 1.0e0: unknown, the run was interrupted at t = "),
+        "{text}"
+    );
+}
+
+#[test]
 fn the_recording_and_the_summary_carry_the_estimate_unless_it_is_turned_off() {
     let dir = Scratch::new("estimate");
     for (flag, carried) in [(None, true), (Some("--no-error-estimate"), false)] {

@@ -159,8 +159,9 @@ pub struct Summary {
     /// Whether the live tip estimate's bound ([`Summary::tolerance_bound`]) stayed within the
     /// tolerance at every step the run shares with its shadow: true where the tolerance held (the
     /// bound errs on the safe side), false where it may not have (a run whose true error is above
-    /// half the tolerance may be false though it held); absent without a tolerance, or where the
-    /// estimate was lost before the end (`error_estimate.lost`).
+    /// half the tolerance may be false though it held); absent without a tolerance, where the
+    /// estimate was lost before the end (`error_estimate.lost`), or where the run was
+    /// interrupted before it passed.
     pub tolerance_met: Option<bool>,
     /// How the live estimate bounded the tip's error for the tolerance: at first order (a
     /// whip's), or, for a mode, at the order `--tolerance`'s pilots observed or its linear theory
@@ -406,6 +407,10 @@ impl Summary {
                         "  tolerance {eps:.1e}: met (by the estimate, at every step the run shares with its shadow)\n"
                     )
                 }
+                (None, None) if self.status == Status::Interrupted => format!(
+                    "  tolerance {eps:.1e}: unknown, the run was interrupted at t = {:.4} (the estimate held it to there)\n",
+                    self.steps as f64 * self.dt
+                ),
                 _ => format!("  tolerance {eps:.1e}: unknown, the estimate was lost\n"),
             };
         }
@@ -575,11 +580,15 @@ fn fixed(value: f64) -> String {
 }
 
 /// Whether the tolerance held by the estimate: false once it passed, true if it never did and
-/// the estimate lasted to the end, unknown otherwise.
+/// the estimate lasted to the end, unknown otherwise (a run interrupted before its end among
+/// them: what it held to there says nothing of the rest).
 fn tolerance_met(plan: &RunPlan, outcome: &Outcome) -> Option<bool> {
     plan.tolerance?;
     if outcome.tolerance_exceeded_at.is_some() {
         return Some(false);
+    }
+    if outcome.cancelled {
+        return None;
     }
     match &outcome.estimate {
         Some(e) if e.lost.is_none() && e.final_tip.is_some() => Some(true),
