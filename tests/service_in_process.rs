@@ -4,9 +4,7 @@
 
 mod common;
 
-use clap::Parser as _;
-use common::cli::Recording;
-use rope::cli::{Cli, Command, RunArgs, StudyArgs};
+use common::cli::{Recording, run_args, study_args};
 use rope::recording::memory::InMemory;
 use rope::service::notices::{Collected, Topic};
 use rope::service::{ServiceError, Session, run, study};
@@ -14,24 +12,6 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::Ordering;
 use std::time::Duration;
-
-fn run_args(args: &[&str]) -> RunArgs {
-    let mut full = vec!["rope", "run"];
-    full.extend_from_slice(args);
-    match Cli::try_parse_from(&full).expect("the flags parse").command {
-        Command::Run(args) => args,
-        Command::Study(_) => unreachable!(),
-    }
-}
-
-fn study_args(args: &[&str]) -> StudyArgs {
-    let mut full = vec!["rope", "study"];
-    full.extend_from_slice(args);
-    match Cli::try_parse_from(&full).expect("the flags parse").command {
-        Command::Study(args) => args,
-        Command::Run(_) => unreachable!(),
-    }
-}
 
 fn listened() -> (Session, Arc<Collected>) {
     let heard = Arc::new(Collected::default());

@@ -3,24 +3,24 @@
 
 mod common;
 
-use clap::Parser as _;
-use common::cli::{ROPE, Scratch, signal_and_wait, start};
-use rope::cli::{Cli, Command, StudyArgs};
+use common::cli::{ROPE, Scratch, signal_and_wait, start, stderr_of, study_args};
 use rope::run::Verdict;
 use rope::service::notices::Collected;
 use rope::service::{Session, study};
-use std::io::Read as _;
+use std::process::Child;
 use std::sync::Arc;
 use std::sync::atomic::Ordering;
 use std::time::Duration;
 
-fn study_args(args: &[&str]) -> StudyArgs {
-    let mut full = vec!["rope", "study"];
-    full.extend_from_slice(args);
-    match Cli::try_parse_from(&full).expect("the flags parse").command {
-        Command::Study(args) => args,
-        Command::Run(_) => unreachable!(),
-    }
+/// Sends SIGINT to the study `child` 1.5 s after it started, and waits for it: it must end
+/// with status 130, saying that it wrote nothing. Returns what it said.
+fn interrupted_mid_study(mut child: Child) -> String {
+    std::thread::sleep(Duration::from_millis(1500));
+    let (status, _) = signal_and_wait(&mut child, "-INT", Duration::from_secs(120));
+    let said = stderr_of(&mut child);
+    assert_eq!(status.code(), Some(130), "{said}");
+    assert!(said.contains("nothing was written"), "{said}");
+    said
 }
 
 /// Every kind of study, stopped before its first run: none writes a file into its folder,
@@ -71,7 +71,7 @@ fn sigint_mid_study_ends_it_interrupted_with_nothing_written() {
     let out = dir.path("out");
     // A reference at N = 200 (about 9 s of wall on 2 cores) and 16 runs of 30 time units
     // (4 s more): the signal comes while the reference runs, which stops it there.
-    let mut child = start(&[
+    let child = start(&[
         "study",
         "--duration",
         "30",
@@ -84,14 +84,7 @@ fn sigint_mid_study_ends_it_interrupted_with_nothing_written() {
         "--out",
         out.to_str().unwrap(),
     ]);
-    std::thread::sleep(Duration::from_millis(1500));
-    let (status, _) = signal_and_wait(&mut child, "-INT", Duration::from_secs(120));
-    let mut said = String::new();
-    if let Some(mut stderr) = child.stderr.take() {
-        stderr.read_to_string(&mut said).unwrap();
-    }
-    assert_eq!(status.code(), Some(130), "{said}");
-    assert!(said.contains("nothing was written"), "{said}");
+    let said = interrupted_mid_study(child);
     assert!(!out.join("study.csv").exists(), "{said}");
     assert!(!out.join("findings.md").exists(), "{said}");
 }
@@ -103,7 +96,7 @@ fn sigint_mid_study_ends_it_interrupted_with_nothing_written() {
 fn sigint_during_the_checks_references_stops_their_runs_partway() {
     let dir = Scratch::new("check-sigint");
     let (out, kept) = (dir.path("out"), dir.path("kept"));
-    let mut child = std::process::Command::new(ROPE)
+    let child = std::process::Command::new(ROPE)
         .args(["study", "--tolerance-check", "quick", "--out"])
         .arg(&out)
         .env(rope::study::run_cache::ENV, &kept)
@@ -111,14 +104,7 @@ fn sigint_during_the_checks_references_stops_their_runs_partway() {
         .stderr(std::process::Stdio::piped())
         .spawn()
         .expect("the rope binary runs");
-    std::thread::sleep(Duration::from_millis(1500));
-    let (status, _) = signal_and_wait(&mut child, "-INT", Duration::from_secs(120));
-    let mut said = String::new();
-    if let Some(mut stderr) = child.stderr.take() {
-        stderr.read_to_string(&mut said).unwrap();
-    }
-    assert_eq!(status.code(), Some(130), "{said}");
-    assert!(said.contains("nothing was written"), "{said}");
+    let said = interrupted_mid_study(child);
     let finest: Vec<_> = std::fs::read_dir(&kept)
         .map(|d| d.flatten().map(|e| e.file_name()).collect())
         .unwrap_or_default();

@@ -50,6 +50,24 @@ impl Progress for Watched<'_> {
     }
 }
 
+/// Runs `work` watched: `total` pieces called `what` counted on a bar (or a line every tenth
+/// off a terminal), the session's stop flag heard; the bar goes when `work` returns, however
+/// it ends.
+fn watched<T>(
+    session: &Session,
+    total: u64,
+    what: &'static str,
+    work: impl FnOnce(&Watched<'_>) -> T,
+) -> T {
+    let counter = Counter::new(total, "rope study", what);
+    let ended = work(&Watched {
+        counter: &counter,
+        session,
+    });
+    counter.finish();
+    ended
+}
+
 /// `rope study`: the grid, the reference, the findings and charts; optionally a recording.
 /// Stopped (Ctrl-C or SIGTERM), it starts no more runs, lets those under way finish, writes
 /// nothing and ends [`Verdict::Interrupted`]; otherwise [`Verdict::Ok`].
@@ -131,19 +149,9 @@ fn dispatch(args: &StudyArgs, session: &Session) -> Result<(), ServiceError> {
         .map(|p| crate::cli::reference_file(p, &plan))
         .transpose()?;
     if args.reference_only {
-        let counter = Counter::new(1, "rope study", "references");
-        let progress = Watched {
-            counter: &counter,
-            session,
-        };
-        let path = crate::study::execute_reference_only(
-            spec,
-            plan.reference_segments,
-            &args.out,
-            &progress,
-        );
-        counter.finish();
-        let path = path?;
+        let path = watched(session, 1, "references", |progress| {
+            crate::study::execute_reference_only(spec, plan.reference_segments, &args.out, progress)
+        })?;
         say(
             session,
             format!(
@@ -179,23 +187,18 @@ fn dispatch(args: &StudyArgs, session: &Session) -> Result<(), ServiceError> {
             ),
         );
     }
-    let counter = Counter::new(cells, "rope study", "runs");
-    let progress = Watched {
-        counter: &counter,
-        session,
-    };
     let command = &session.command;
     if let Some(shard) = args.shard {
-        let ran = crate::study::execute_shard(
-            spec,
-            shard,
-            reference,
-            plan.reference_segments,
-            &args.out,
-            &progress,
-        );
-        counter.finish();
-        ran?;
+        watched(session, cells, "runs", |progress| {
+            crate::study::execute_shard(
+                spec,
+                shard,
+                reference,
+                plan.reference_segments,
+                &args.out,
+                progress,
+            )
+        })?;
         say(
             session,
             format!(
@@ -205,14 +208,12 @@ fn dispatch(args: &StudyArgs, session: &Session) -> Result<(), ServiceError> {
         );
         return Ok(());
     }
-    let outcome = match reference {
+    let outcome = watched(session, cells, "runs", |progress| match reference {
         Some(file) => {
-            crate::study::execute_with(spec, file.reference(), &args.out, command, &progress)
+            crate::study::execute_with(spec, file.reference(), &args.out, command, progress)
         }
-        None => crate::study::execute(spec, plan.reference_segments, &args.out, command, &progress),
-    };
-    counter.finish();
-    let outcome = outcome?;
+        None => crate::study::execute(spec, plan.reference_segments, &args.out, command, progress),
+    })?;
     if let Some(path) = &args.save {
         let rec = rerun::RecordingStreamBuilder::new("rope-study")
             .save(path)
@@ -252,24 +253,10 @@ fn long_runs(session: &Session, args: &StudyArgs, duration: f64) -> Result<(), S
             cost::seconds_text(plan.cost.seconds)
         ),
     );
-    let counter = Counter::new(
-        runs.saturating_mul(duration.ceil() as u64),
-        "rope study",
-        "time units",
-    );
-    let progress = Watched {
-        counter: &counter,
-        session,
-    };
-    let markdown = crate::study::execute_long_runs(
-        &plan.runs,
-        duration,
-        &args.out,
-        &session.command,
-        &progress,
-    );
-    counter.finish();
-    let markdown = markdown?;
+    let units = runs.saturating_mul(duration.ceil() as u64);
+    let markdown = watched(session, units, "time units", |progress| {
+        crate::study::execute_long_runs(&plan.runs, duration, &args.out, &session.command, progress)
+    })?;
     report(session, markdown);
     wrote(
         session,
@@ -325,19 +312,10 @@ fn estimate_check(session: &Session, args: &StudyArgs) -> Result<(), ServiceErro
             rayon::current_num_threads()
         ),
     );
-    let counter = Counter::new(
-        (spec.scenes.len() + cells) as u64,
-        "rope study",
-        "references and runs",
-    );
-    let progress = Watched {
-        counter: &counter,
-        session,
-    };
-    let markdown =
-        crate::study::execute_estimate_check(&spec, &args.out, &session.command, &progress);
-    counter.finish();
-    let markdown = markdown?;
+    let pieces = (spec.scenes.len() + cells) as u64;
+    let markdown = watched(session, pieces, "references and runs", |progress| {
+        crate::study::execute_estimate_check(&spec, &args.out, &session.command, progress)
+    })?;
     report(session, markdown);
     wrote(
         session,
@@ -409,15 +387,20 @@ fn tolerance_check(
             spec.duration
         ),
     );
-    let counter = Counter::new(runs as u64, "rope study", "references, runs and choices");
-    let progress = Watched {
-        counter: &counter,
+    let markdown = watched(
         session,
-    };
-    let markdown =
-        crate::study::execute_tolerance_check(&spec, &read, &args.out, &session.command, &progress);
-    counter.finish();
-    let markdown = markdown?;
+        runs as u64,
+        "references, runs and choices",
+        |progress| {
+            crate::study::execute_tolerance_check(
+                &spec,
+                &read,
+                &args.out,
+                &session.command,
+                progress,
+            )
+        },
+    )?;
     report(session, markdown);
     wrote(
         session,
@@ -440,15 +423,9 @@ fn blow_up(session: &Session, args: &StudyArgs, duration: f64) -> Result<(), Ser
             crate::methods::REPORT.method
         ),
     );
-    let counter = Counter::new(runs, "rope study", "runs");
-    let progress = Watched {
-        counter: &counter,
-        session,
-    };
-    let markdown =
-        crate::study::execute_blow_up(&scene, duration, &args.out, &session.command, &progress);
-    counter.finish();
-    let markdown = markdown?;
+    let markdown = watched(session, runs, "runs", |progress| {
+        crate::study::execute_blow_up(&scene, duration, &args.out, &session.command, progress)
+    })?;
     report(session, markdown);
     wrote(session, "blow_up.md, blow_up.csv and the charts", &args.out);
     Ok(())

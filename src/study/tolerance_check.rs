@@ -443,14 +443,13 @@ pub fn check(
         let runs_at = |method: MethodKind, n: usize| -> Result<Vec<Measured>, Stopped> {
             grid_steps(method, n)
                 .into_iter()
-                .filter_map(|dt| {
-                    if let Err(stopped) = progress.check() {
-                        return Some(Err(stopped));
-                    }
+                .map(|dt| {
+                    progress.check()?;
                     let run = measure(method, scene, n, dt, spec.duration, None, reference);
                     progress.done();
-                    run.map(Ok)
+                    Ok(run)
                 })
+                .filter_map(Result::transpose)
                 .collect()
         };
         // Each method up the grid until a run holds the smallest EPS and none at that N costs

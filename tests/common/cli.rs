@@ -33,6 +33,31 @@ impl Drop for Scratch {
     }
 }
 
+/// `rope run ARGS` parsed as the binary parses it, for a service called in-process.
+pub fn run_args(args: &[&str]) -> rope::cli::RunArgs {
+    match parsed("run", args) {
+        rope::cli::Command::Run(args) => args,
+        rope::cli::Command::Study(_) => unreachable!(),
+    }
+}
+
+/// `rope study ARGS` parsed as the binary parses it, for a service called in-process.
+pub fn study_args(args: &[&str]) -> rope::cli::StudyArgs {
+    match parsed("study", args) {
+        rope::cli::Command::Study(args) => args,
+        rope::cli::Command::Run(_) => unreachable!(),
+    }
+}
+
+/// `rope COMMAND ARGS` parsed.
+fn parsed(command: &str, args: &[&str]) -> rope::cli::Command {
+    let mut full = vec!["rope", command];
+    full.extend_from_slice(args);
+    <rope::cli::Cli as clap::Parser>::try_parse_from(&full)
+        .expect("the flags parse")
+        .command
+}
+
 pub fn rope(args: &[&str]) -> Output {
     Command::new(ROPE)
         .args(args)
