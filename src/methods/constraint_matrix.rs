@@ -13,6 +13,16 @@
 
 use nalgebra::{Matrix2, Vector2};
 
+/// The inverse of a 2×2 matrix: its adjugate times one reciprocal of the determinant, where
+/// nalgebra's `try_inverse` divides four times (docs/measurements.md); NaN where the matrix is
+/// singular or not finite, which the callers' checks of finiteness then show.
+#[inline(always)]
+pub(crate) fn inverse(m: Matrix2<f64>) -> Matrix2<f64> {
+    let det = m.m11 * m.m22 - m.m12 * m.m21;
+    let inv = if det == 0.0 { f64::NAN } else { 1.0 / det };
+    Matrix2::new(m.m22 * inv, -m.m12 * inv, -m.m21 * inv, m.m11 * inv)
+}
+
 /// h A at one configuration, factorised: D'_j = D_j − U_{j−1} D'_{j−1}⁻¹ U_{j−1}.
 #[derive(Clone, Debug)]
 pub(crate) struct ConstraintMatrix {
@@ -54,9 +64,7 @@ impl ConstraintMatrix {
             }
             self.upper[j] = p_prev - eye;
             // A non-finite configuration makes NaN here, which the caller detects.
-            self.pivot[j] = diag
-                .try_inverse()
-                .unwrap_or_else(|| Matrix2::from_element(f64::NAN));
+            self.pivot[j] = inverse(diag);
             self.gain[j] = if j + 1 < n {
                 self.pivot[j] * self.upper[j]
             } else {
@@ -79,5 +87,24 @@ impl ConstraintMatrix {
             before = self.pivot[j] * r;
             *xj = before;
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The one-division inverse is the inverse: its products with the matrix are the
+    /// identity to round-off, as nalgebra's four-division one is; singular, it is NaN.
+    #[test]
+    fn inverse_by_one_division() {
+        let m = Matrix2::new(2.0, -0.7, 0.3, 1.1);
+        let inv = inverse(m);
+        let reference = m.try_inverse().expect("invertible");
+        assert!((inv * m - Matrix2::identity()).amax() < 1e-15);
+        assert!((m * inv - Matrix2::identity()).amax() < 1e-15);
+        assert!((inv - reference).amax() < 1e-15);
+        let singular = Matrix2::new(1.0, 2.0, 2.0, 4.0);
+        assert!(inverse(singular).iter().all(|x| x.is_nan()));
     }
 }

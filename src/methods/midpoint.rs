@@ -48,7 +48,7 @@
 //! driver step is one pair. A Newton that fails retakes its step at half the length
 //! (counted); past [`MIN_STEP_FRACTION`] of k_max the run has diverged.
 
-use super::constraint_matrix::ConstraintMatrix;
+use super::constraint_matrix::{ConstraintMatrix, inverse};
 use super::joint_forces::ForceSolver;
 use super::method::{self, Descriptor, Method, Observation, StepStatistics};
 use crate::error::{ConfigError, Diverged};
@@ -113,7 +113,9 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     // The limit: the worst tip error to t = 3 within 1.5 % of the default step's in every
     // scene and N probed, with 2.5 times fewer steps (`scripts/tolerance-step.sh`).
     tolerance_step_fraction: Some(1.0),
-    // A pair of steps and its projection (`cargo bench --bench step`, N = 1000).
+    // A pair of steps and its projection (`cargo bench --bench step`, N = 1000), before its
+    // loops lost their divisions (3 to 12 % less since: docs/measurements.md); left so that
+    // `--tolerance` chooses as the committed check measured.
     ns_per_segment_step: 348.0,
     tension_first_at: 0.5,
     discretization: "rods",
@@ -133,12 +135,21 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
 #[inline(always)]
 fn half_angle(x: f64) -> (f64, f64, f64, f64) {
     if x.abs() < 0.1 {
+        // Multiplied by reciprocals, as `geometry::turned` is: divided by, these constants
+        // were a step's longest stalls (docs/measurements.md).
         let x2 = x * x;
-        let sinc = 1.0 - x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0 * (1.0 - x2 / 72.0)));
+        let sinc = 1.0
+            - x2 * (1.0 / 6.0)
+                * (1.0 - x2 * (1.0 / 20.0) * (1.0 - x2 * (1.0 / 42.0) * (1.0 - x2 * (1.0 / 72.0))));
         let cos = 1.0
-            - x2 / 2.0
-                * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0 * (1.0 - x2 / 56.0 * (1.0 - x2 / 90.0))));
-        let dsinc = x * (-1.0 / 3.0 + x2 * (1.0 / 30.0 - x2 * (1.0 / 840.0 - x2 / 45_360.0)));
+            - x2 * 0.5
+                * (1.0
+                    - x2 * (1.0 / 12.0)
+                        * (1.0
+                            - x2 * (1.0 / 30.0)
+                                * (1.0 - x2 * (1.0 / 56.0) * (1.0 - x2 * (1.0 / 90.0)))));
+        let dsinc =
+            x * (-1.0 / 3.0 + x2 * (1.0 / 30.0 - x2 * (1.0 / 840.0 - x2 * (1.0 / 45_360.0))));
         (x * sinc, cos, sinc, dsinc)
     } else {
         let (s, c) = x.sin_cos();
@@ -190,15 +201,6 @@ impl Turn {
         let n_mid = c * normal(tangent) - s * tangent;
         (sinc * n_mid, 2.0 * s * n_mid)
     }
-}
-
-/// The inverse of a 2×2 matrix (NaN where it is singular or not finite, which Newton's
-/// correction then shows).
-#[inline(always)]
-fn inverse(m: Matrix2<f64>) -> Matrix2<f64> {
-    let det = m.m11 * m.m22 - m.m12 * m.m21;
-    let inv = 1.0 / det;
-    Matrix2::new(m.m22 * inv, -m.m12 * inv, -m.m21 * inv, m.m11 * inv)
 }
 
 /// What Newton's Jacobian keeps of a rod between refreshes: a_i / d_i, b_i and 1 / d_i.
@@ -368,9 +370,9 @@ impl Midpoint {
         self.rate.iter().fold(0.0, |m: f64, w| m.max(w.abs()))
     }
 
-    /// The step the state asks for: k_max, or shorter where a rod spins fast.
-    fn wanted_step(&self) -> f64 {
-        let spin = self.fastest_spin();
+    /// The step the state asks for at its fastest spin `spin`: k_max, or shorter where a rod
+    /// spins fast.
+    fn wanted_step(&self, spin: f64) -> f64 {
         if spin * self.k > self.rotation {
             self.rotation / spin
         } else {
@@ -693,7 +695,7 @@ impl Method for Midpoint {
             // pairs, each pair followed by the projection; the last step lands on the
             // driver's time exactly. (After a Newton failure broke a pair, an odd number of
             // steps, the first alone, completes it.)
-            let wanted = self.wanted_step().min(ceiling);
+            let wanted = self.wanted_step(spin).min(ceiling);
             let single = !self.since_projection.is_multiple_of(2);
             let mut parts = (remaining / wanted * (1.0 - 1e-12)).ceil().max(1.0);
             if (parts % 2.0 == 1.0) != single {

@@ -78,6 +78,9 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     // At the limit its whip from the horizontal errs 17 % more than at the default step
     // (N = 64, `scripts/tolerance-step.sh`): its tolerance keeps the default.
     tolerance_step_fraction: None,
+    // `cargo bench --bench step`, N = 1000, before its loops lost their divisions (3 to 12 %
+    // less since: docs/measurements.md); left so that `--tolerance` chooses as the committed
+    // check measured.
     ns_per_segment_step: 71.0,
     tension_first_at: 0.5,
     discretization: "rods",
@@ -255,7 +258,10 @@ impl Rattle {
     /// −M⁻¹ G(q_n)ᵀ δ (rod j carries −δ_j at its start and δ_{j+1} at its end), adds δ to Λ,
     /// and puts the new gaps in `work`. Returns the largest gap.
     fn correct(&mut self) -> f64 {
-        let (h, inertia, half) = (self.h, self.inertia(), 0.5 * self.h);
+        let (h, half) = (self.h, 0.5 * self.h);
+        // Reciprocals, multiplied by in the loop rather than divided by at every rod (as the
+        // midpoint's series are: docs/measurements.md).
+        let (per_length, per_inertia) = (1.0 / h, 1.0 / self.inertia());
         self.matrix.forward(h, &mut self.work);
         let n = self.work.len();
         let now = &mut self.now;
@@ -264,8 +270,8 @@ impl Rattle {
         for j in (0..n).rev() {
             let delta = self.work[j] - self.matrix.gain[j] * after;
             self.multiplier[j] += delta;
-            now.centre[j] -= (after - delta) / h;
-            let turn = -half * self.matrix.normal[j].dot(&(delta + after)) / inertia;
+            now.centre[j] -= (after - delta) * per_length;
+            let turn = -half * self.matrix.normal[j].dot(&(delta + after)) * per_inertia;
             now.angle[j] += turn;
             now.tangent[j] = geometry::turned(now.tangent[j], turn);
             if j + 1 < n {
@@ -308,11 +314,12 @@ impl Rattle {
         let kick = 0.5 * dt * h * self.ledger.gravity(self.clock + dt);
         let now = &mut self.now;
         let mut moved = 0.0;
+        let (mass_rate, inertia_rate) = (h / dt, inertia / dt);
         for i in 0..now.angle.len() {
             let shift = now.centre[i] - self.before_centre[i];
             moved += shift.x;
-            now.momentum[i] = h * shift / dt + kick;
-            now.spin[i] = inertia * (now.angle[i] - self.before_angle[i]) / dt;
+            now.momentum[i] = mass_rate * shift + kick;
+            now.spin[i] = inertia_rate * (now.angle[i] - self.before_angle[i]);
         }
         self.ledger.step(self.clock, dt, h * moved);
         self.clock += dt;
@@ -324,12 +331,13 @@ impl Rattle {
 
     /// p −= Gᵀ μ with A μ = G M⁻¹ p: the joints' relative velocities become zero.
     fn project_velocities(&mut self) {
-        let (h, inertia, half) = (self.h, self.inertia(), 0.5 * self.h);
+        let (h, half) = (self.h, 0.5 * self.h);
+        let (per_length, per_inertia) = (1.0 / h, 1.0 / self.inertia());
         let now = &mut self.now;
         let mut end_before = Vector2::zeros(); // the support does not move
         for j in 0..now.angle.len() {
-            let v = now.momentum[j] / h;
-            let w = now.spin[j] / inertia * half * self.matrix.normal[j];
+            let v = now.momentum[j] * per_length;
+            let w = now.spin[j] * per_inertia * half * self.matrix.normal[j];
             // d/dt g_j = v_end(j−1) − v_start(j); v_start = v − (h/2) θ̇ n, v_end = v + (h/2) θ̇ n.
             self.work[j] = end_before - (v - w);
             end_before = v + w;
