@@ -324,7 +324,16 @@ impl Method for Chain {
             ));
         }
         self.steps += 1;
+        // Oriented at the new angles now rather than at the next step's start (which then
+        // finds them so): the tip the live estimate reads at this step comes from them.
+        self.solver.orient_moved(&self.phi);
         Ok(())
+    }
+
+    fn tip(&self) -> geometry::Point {
+        let lengths = self.lengths();
+        (self.solver.tip_at(&self.phi, lengths))
+            .unwrap_or_else(|| geometry::tip_of(&self.phi, lengths))
     }
 
     fn energy(&self) -> Energy {

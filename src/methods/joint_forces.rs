@@ -96,6 +96,19 @@ impl ForceSolver {
         }
     }
 
+    /// The free end of rods of `lengths` (`None`: equal) at angles `phi`, summed from the
+    /// base tangents where they are at these very angles (as [`geometry::tip_of`] sums, to
+    /// round-off); `None` where they are not.
+    pub(crate) fn tip_at(&self, phi: &[f64], lengths: Option<&[f64]>) -> Option<geometry::Point> {
+        if self.moves.is_none() || self.base_angle.as_slice() != phi {
+            return None;
+        }
+        let h = 1.0 / phi.len() as f64;
+        let length = |i: usize| lengths.map_or(h, |l| l[i]);
+        let tip = self.base.iter().enumerate();
+        Some(tip.fold(geometry::Point::origin(), |p, (i, t)| p + length(i) * t))
+    }
+
     /// Orients the rods at the base angles (the last [`ForceSolver::orient`]) plus `turn`:
     /// an RK4 stage's angles, φ + a φ̇, from the step's own by rotation rather than by a sine
     /// and cosine of each rod (the turns within a step are small: [`geometry::turned`]).
@@ -294,6 +307,11 @@ mod tests {
         solver.orient_moved(&phi);
         assert_eq!(solver.tangent, tangents);
         assert_eq!(solver.moves, moves);
+        // The tip from the base: the sum of the sines and cosines, to round-off; at other
+        // angles, none.
+        let tip = solver.tip_at(&phi, None).expect("oriented at phi");
+        assert!((tip - geometry::tip_of(&phi, None)).norm() < 1e-14);
+        assert!(solver.tip_at(&angles(0.124), None).is_none());
     }
 
     /// The joint forces from Newton–Euler for each rod and the condition that the support

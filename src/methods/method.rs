@@ -91,6 +91,13 @@ pub trait Method: Send {
     fn lengths(&self) -> Option<&[f64]> {
         None
     }
+    /// The free end in the support's frame, Σ l_i (cos φ_i, sin φ_i) (eqs. 14–15 at the last
+    /// node), what the live estimate compares at every step it shares with its shadow: by
+    /// default from the angles, a sine and cosine a rod; a method that holds its rods'
+    /// tangents at these very angles sums those instead.
+    fn tip(&self) -> crate::model::geometry::Point {
+        crate::model::geometry::tip_of(self.angles(), self.lengths())
+    }
     /// The largest joint gap |g_j| after the latest step, for a method whose rods are held
     /// together by constraints it solves for (it must stay at round-off); `None` for a
     /// method whose string cannot come apart by construction.

@@ -135,9 +135,18 @@ pub fn tip_in_the_room(
     angles: &[f64],
     lengths: Option<&[f64]>,
 ) -> super::geometry::Point {
-    let mut tip = [super::geometry::tip_of(angles, lengths)];
-    into_the_room(support, &mut tip);
-    tip[0]
+    point_in_the_room(support, super::geometry::tip_of(angles, lengths))
+}
+
+/// A point drawn from the support (a method's [`tip`](crate::methods::Method::tip)) in the
+/// room, where `support` (if it moves) is.
+pub fn point_in_the_room(
+    support: Option<SupportNow>,
+    point: super::geometry::Point,
+) -> super::geometry::Point {
+    let mut points = [point];
+    into_the_room(support, &mut points);
+    points[0]
 }
 
 /// Carries `points` drawn from the support into the room, where `support` (if it moves) is.

@@ -8,7 +8,7 @@ use super::trust::{ENERGY_BLOWUP, reference_energy};
 use crate::error::Diverged;
 use crate::methods::Method;
 use crate::model::geometry::{self, Point};
-use crate::model::support::{into_the_room, tip_in_the_room};
+use crate::model::support::{into_the_room, point_in_the_room};
 use crossbeam_channel::{Receiver, Sender};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -55,7 +55,7 @@ impl Stepper {
     /// The tip, in the room.
     fn tip(&self) -> Point {
         let m = &self.method;
-        tip_in_the_room(m.support(), m.angles(), m.lengths())
+        point_in_the_room(m.support(), m.tip())
     }
 
     /// The nodes (support … tip), in the room.

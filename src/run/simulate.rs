@@ -11,7 +11,7 @@ use crate::methods::{
 };
 use crate::model::Scene;
 use crate::model::geometry::Point;
-use crate::model::support::tip_in_the_room;
+use crate::model::support::{point_in_the_room, tip_in_the_room};
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -364,7 +364,7 @@ fn watch_tip(
     if said.lost.is_some() || !step.is_multiple_of(STRIDE) {
         return None;
     }
-    let tip = tip_in_the_room(method.support(), method.angles(), method.lengths());
+    let tip = point_in_the_room(method.support(), method.tip());
     let Some(e) = watch.shadow.tip_estimate(step, tip) else {
         said.lost = watch.shadow.lost().cloned();
         return None;
