@@ -332,7 +332,8 @@ impl Method for Chain {
 
     fn tip(&self) -> geometry::Point {
         let lengths = self.lengths();
-        (self.solver.tip_at(&self.phi, lengths))
+        self.solver
+            .tip_at(&self.phi, lengths)
             .unwrap_or_else(|| geometry::tip_of(&self.phi, lengths))
     }
 

@@ -97,16 +97,11 @@ impl ForceSolver {
     }
 
     /// The free end of rods of `lengths` (`None`: equal) at angles `phi`, summed from the
-    /// base tangents where they are at these very angles (as [`geometry::tip_of`] sums, to
-    /// round-off); `None` where they are not.
+    /// base tangents where they are at these very angles ([`geometry::tip_of_tangents`]: to
+    /// round-off, [`geometry::tip_of`]); `None` where they are not.
     pub(crate) fn tip_at(&self, phi: &[f64], lengths: Option<&[f64]>) -> Option<geometry::Point> {
-        if self.moves.is_none() || self.base_angle.as_slice() != phi {
-            return None;
-        }
-        let h = 1.0 / phi.len() as f64;
-        let length = |i: usize| lengths.map_or(h, |l| l[i]);
-        let tip = self.base.iter().enumerate();
-        Some(tip.fold(geometry::Point::origin(), |p, (i, t)| p + length(i) * t))
+        (self.moves.is_some() && self.base_angle.as_slice() == phi)
+            .then(|| geometry::tip_of_tangents(&self.base, lengths))
     }
 
     /// Orients the rods at the base angles (the last [`ForceSolver::orient`]) plus `turn`:

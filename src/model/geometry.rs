@@ -199,11 +199,30 @@ pub fn tip(angles: &[f64]) -> Point {
 
 /// As [`tip`], for rods of `lengths` where they are given.
 pub fn tip_of(angles: &[f64], lengths: Option<&[f64]>) -> Point {
-    let h = length_of(lengths, angles.len());
-    angles
-        .iter()
+    tip_along(
+        angles.iter().map(|&phi| tangent(phi)),
+        lengths,
+        angles.len(),
+    )
+}
+
+/// As [`tip_of`], for rods whose unit tangents are already known (a method that holds them
+/// at its angles): the same sum, without a sine and cosine a rod.
+pub fn tip_of_tangents(tangents: &[Vector2<f64>], lengths: Option<&[f64]>) -> Point {
+    tip_along(tangents.iter().copied(), lengths, tangents.len())
+}
+
+/// Σ l_i t_i over the `segments` rods' unit tangents, support to tip (eqs. 14–15 at the last
+/// node).
+fn tip_along(
+    tangents: impl Iterator<Item = Vector2<f64>>,
+    lengths: Option<&[f64]>,
+    segments: usize,
+) -> Point {
+    let h = length_of(lengths, segments);
+    tangents
         .enumerate()
-        .fold(Point::origin(), |p, (i, &phi)| p + h(i) * tangent(phi))
+        .fold(Point::origin(), |p, (i, t)| p + h(i) * t)
 }
 
 /// Energy of the chain of rods (eq. 13 summed, eq. 16), in units of m g L.
