@@ -9,7 +9,7 @@ use rope::methods::MethodKind;
 use rope::methods::midpoint::Midpoint;
 use rope::methods::{Method, Observation};
 use rope::model::Scene;
-use rope::model::geometry;
+use rope::model::energy;
 
 const MIDPOINT: MethodKind = MethodKind::Midpoint;
 const THIRTY: Scene = Scene::Release { angle_deg: 30.0 };
@@ -132,7 +132,7 @@ fn velocities_stay_on_the_constraints_and_the_energy_stays_put_over_a_long_run()
         }
         rope.observe(&mut seen);
         let own = rope.energy().total();
-        let from_rates = geometry::energy(&seen.angle, &seen.angular_velocity).total();
+        let from_rates = energy::energy(&seen.angle, &seen.angular_velocity).total();
         worst_split = worst_split.max((own - from_rates).abs());
         worst_drift = worst_drift.max((own - start).abs());
     }

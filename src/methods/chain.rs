@@ -19,7 +19,8 @@
 use super::joint_forces::ForceSolver;
 use super::method::{self, Descriptor, Method, Observation};
 use crate::error::{ConfigError, Diverged};
-use crate::model::geometry::{self, Energy};
+use crate::model::energy::{self, Energy};
+use crate::model::geometry;
 use crate::model::{Scene, SupportLedger, SupportNow};
 use nalgebra::Vector2;
 
@@ -330,19 +331,26 @@ impl Method for Chain {
         Ok(())
     }
 
+    /// From the tangents the step oriented at its new angles, where they are at these.
     fn tip(&self) -> geometry::Point {
         let lengths = self.lengths();
-        self.solver
-            .tip_at(&self.phi, lengths)
-            .unwrap_or_else(|| geometry::tip_of(&self.phi, lengths))
+        match self.solver.tangents_at(&self.phi) {
+            Some(tangents) => geometry::tip_of_tangents(tangents, lengths),
+            None => geometry::tip_of(&self.phi, lengths),
+        }
     }
 
+    /// From the tangents the step oriented at its new angles, as the tip: the run watches
+    /// the energy at every step.
     fn energy(&self) -> Energy {
-        let in_frame = match &self.length {
-            None => geometry::energy(&self.phi, &self.omega),
-            Some(length) => geometry::energy_of_rods(self.phi.len(), |i| {
-                (self.phi[i], self.omega[i], length[i])
-            }),
+        let in_frame = match (self.solver.tangents_at(&self.phi), &self.length) {
+            (Some(tangents), lengths) => {
+                energy::energy_of_tangents(tangents, &self.omega, lengths.as_deref())
+            }
+            (None, None) => energy::energy(&self.phi, &self.omega),
+            (None, Some(length)) => {
+                energy::energy_of_rods(self.phi.len(), |i| (self.phi[i], self.omega[i], length[i]))
+            }
         };
         self.ledger
             .in_the_room(in_frame, self.time(), || self.momentum_x())

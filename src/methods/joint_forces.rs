@@ -96,12 +96,11 @@ impl ForceSolver {
         }
     }
 
-    /// The free end of rods of `lengths` (`None`: equal) at angles `phi`, summed from the
-    /// base tangents where they are at these very angles ([`geometry::tip_of_tangents`]: to
-    /// round-off, [`geometry::tip_of`]); `None` where they are not.
-    pub(crate) fn tip_at(&self, phi: &[f64], lengths: Option<&[f64]>) -> Option<geometry::Point> {
-        (self.moves.is_some() && self.base_angle.as_slice() == phi)
-            .then(|| geometry::tip_of_tangents(&self.base, lengths))
+    /// The rods' unit tangents at angles `phi`, where the base is at these very angles (to
+    /// round-off, their sines and cosines): what the tip and the energy are summed from
+    /// without a sine and cosine a rod. `None` where the base is elsewhere.
+    pub(crate) fn tangents_at(&self, phi: &[f64]) -> Option<&[Vector2<f64>]> {
+        (self.moves.is_some() && self.base_angle.as_slice() == phi).then_some(self.base.as_slice())
     }
 
     /// Orients the rods at the base angles (the last [`ForceSolver::orient`]) plus `turn`:
@@ -271,6 +270,7 @@ impl ForceSolver {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::energy;
     use nalgebra::{DMatrix, DVector};
 
     /// Rods oriented by turning (`orient_moved`) lie where a sine and cosine each put them,
@@ -302,11 +302,19 @@ mod tests {
         solver.orient_moved(&phi);
         assert_eq!(solver.tangent, tangents);
         assert_eq!(solver.moves, moves);
-        // The tip from the base: the sum of the sines and cosines, to round-off; at other
-        // angles, none.
-        let tip = solver.tip_at(&phi, None).expect("oriented at phi");
+        // The tip and the energy from the base: as from the sines and cosines, to round-off;
+        // at other angles, no tangents.
+        let tangents = solver.tangents_at(&phi).expect("oriented at phi");
+        let tip = geometry::tip_of_tangents(tangents, None);
         assert!((tip - geometry::tip_of(&phi, None)).norm() < 1e-14);
-        assert!(solver.tip_at(&angles(0.124), None).is_none());
+        let rates: Vec<f64> = (0..n).map(|i| 0.3 - 0.07 * i as f64).collect();
+        let (turned, exact) = (
+            energy::energy_of_tangents(tangents, &rates, None),
+            energy::energy(&phi, &rates),
+        );
+        assert!((turned.total() - exact.total()).abs() < 1e-14);
+        assert!((turned.kinetic() - exact.kinetic()).abs() < 1e-14);
+        assert!(solver.tangents_at(&angles(0.124)).is_none());
     }
 
     /// The joint forces from Newton–Euler for each rod and the condition that the support

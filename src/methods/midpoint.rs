@@ -52,7 +52,8 @@ use super::constraint_matrix::{ConstraintMatrix, inverse};
 use super::joint_forces::ForceSolver;
 use super::method::{self, Descriptor, Method, Observation, StepStatistics};
 use crate::error::{ConfigError, Diverged};
-use crate::model::geometry::{self, Energy};
+use crate::model::Energy;
+use crate::model::geometry;
 use crate::model::{Scene, SupportLedger, SupportNow};
 use nalgebra::{Matrix2, Vector2};
 
@@ -766,6 +767,11 @@ impl Method for Midpoint {
 
     fn angles(&self) -> &[f64] {
         &self.angle
+    }
+
+    /// From the tangents the state carries with its angles, without a sine and cosine a rod.
+    fn tip(&self) -> geometry::Point {
+        geometry::tip_of_tangents(&self.tangent, None)
     }
 
     fn observe(&mut self, out: &mut Observation) {

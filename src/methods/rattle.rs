@@ -42,7 +42,8 @@ use super::constraint_matrix::ConstraintMatrix;
 use super::joint_forces::ForceSolver;
 use super::method::{self, Descriptor, Method, Observation};
 use crate::error::{ConfigError, Diverged};
-use crate::model::geometry::{self, Energy};
+use crate::model::Energy;
+use crate::model::geometry;
 use crate::model::{Scene, SupportLedger, SupportNow};
 use nalgebra::Vector2;
 
@@ -463,6 +464,11 @@ impl Method for Rattle {
 
     fn angles(&self) -> &[f64] {
         &self.now.angle
+    }
+
+    /// From the tangents the state carries with its angles, without a sine and cosine a rod.
+    fn tip(&self) -> geometry::Point {
+        geometry::tip_of_tangents(&self.now.tangent, None)
     }
 
     fn observe(&mut self, out: &mut Observation) {

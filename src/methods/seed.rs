@@ -9,7 +9,7 @@
 use super::method::{self, BlowUp, Descriptor, Method, Observation};
 use crate::error::{ConfigError, Diverged};
 use crate::model::Scene;
-use crate::model::geometry::{self, Energy};
+use crate::model::energy::{self, Energy};
 
 /// What the seed scheme says of itself (see [`Descriptor`]).
 pub const DESCRIPTOR: Descriptor = Descriptor {
@@ -268,7 +268,7 @@ impl Method for Seed {
     fn energy(&self) -> Energy {
         // Angles and rates at the half step t − k/2, so that both are centred (O(k²)).
         let inv_k = 1.0 / self.k;
-        geometry::energy_of(self.phi.len(), |i| {
+        energy::energy_of(self.phi.len(), |i| {
             (
                 0.5 * (self.phi[i] + self.prev[i]),
                 (self.phi[i] - self.prev[i]) * inv_k,

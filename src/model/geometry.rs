@@ -1,5 +1,6 @@
-//! From angles to positions and energy: the report's eqs. (13)–(16), with the recursive form
-//! of (17)–(18) done as one running sum (its printed typos corrected: `docs/physics.md`).
+//! From angles to positions: the report's eqs. (14)–(16), with the recursive form of (17)–(18)
+//! done as one running sum (its printed typos corrected: `docs/physics.md`); the energy of
+//! eq. (13) is in [`super::energy`].
 //!
 //! Segment i is a uniform rod of mass m = h and length h from node i to node i + 1; node 0 is
 //! the support at the origin. y points down, so the potential energy is −m g y.
@@ -41,7 +42,7 @@ pub fn nodes(angles: &[f64], out: &mut Vec<Point>) {
 
 /// The rods' lengths: each its own where `lengths` gives them (graded rods), else 1/N.
 #[inline]
-fn length_of(lengths: Option<&[f64]>, segments: usize) -> impl Fn(usize) -> f64 + '_ {
+pub(super) fn length_of(lengths: Option<&[f64]>, segments: usize) -> impl Fn(usize) -> f64 + '_ {
     let h = 1.0 / segments as f64;
     move |i| lengths.map_or(h, |l| l[i])
 }
@@ -223,67 +224,6 @@ fn tip_along(
     tangents
         .enumerate()
         .fold(Point::origin(), |p, (i, t)| p + h(i) * t)
-}
-
-/// Energy of the chain of rods (eq. 13 summed, eq. 16), in units of m g L.
-#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
-pub struct Energy {
-    /// Σ (m/2) v_i², the centres' motion.
-    pub translational: f64,
-    /// Σ (m h²/24) φ̇_i², each rod's spin about its centre.
-    pub rotational: f64,
-    /// Σ −m g y_i.
-    pub potential: f64,
-}
-
-impl Energy {
-    /// Translational plus rotational kinetic energy.
-    pub fn kinetic(&self) -> f64 {
-        self.translational + self.rotational
-    }
-
-    /// Kinetic plus potential energy: constant for the ideal string.
-    pub fn total(&self) -> f64 {
-        self.kinetic() + self.potential
-    }
-}
-
-/// Energy of segments whose angle and angular velocity are given by `segment(i)`, in one
-/// O(N) pass. The centre velocity is v_i = Σ_{m<i} h φ̇_m n_m + (h/2) φ̇_i n_i with the normal
-/// n = (−sin φ, cos φ).
-pub fn energy_of(n: usize, segment: impl Fn(usize) -> (f64, f64)) -> Energy {
-    let h = 1.0 / n as f64;
-    energy_of_rods(n, |i| {
-        let (phi, omega) = segment(i);
-        (phi, omega, h)
-    })
-}
-
-/// As [`energy_of`], for rods of their own lengths (mass equal to length): `segment(i)` gives
-/// rod i's angle, rate and length.
-pub fn energy_of_rods(n: usize, segment: impl Fn(usize) -> (f64, f64, f64)) -> Energy {
-    let (mut p, mut v) = (Vector2::zeros(), Vector2::zeros());
-    let mut e = Energy::default();
-    for i in 0..n {
-        let (phi, omega, h) = segment(i);
-        let m = h;
-        let (s, c) = phi.sin_cos();
-        let t = Vector2::new(c, s);
-        let normal = Vector2::new(-s, c);
-        let centre = p + 0.5 * h * t; // eqs. (14)–(15)
-        let v_centre = v + 0.5 * h * omega * normal;
-        e.translational += 0.5 * m * v_centre.norm_squared(); // eq. (13), first term
-        e.rotational += m * h * h / 24.0 * omega * omega; // eq. (13), second term
-        e.potential -= m * centre.y; // eq. (13), third term (y down)
-        p += h * t;
-        v += h * omega * normal;
-    }
-    e
-}
-
-/// Energy from angles and angular velocities at the same instant.
-pub fn energy(angles: &[f64], angular_velocity: &[f64]) -> Energy {
-    energy_of(angles.len(), |i| (angles[i], angular_velocity[i]))
 }
 
 /// Tip velocity Σ h φ̇_i n_i.
@@ -569,22 +509,5 @@ mod tests {
     fn edges_of_check(lengths: &[f64], out: &mut Vec<f64>) {
         edges(lengths.len(), Some(lengths), out);
         assert!((out[lengths.len()] - 1.0).abs() < 1e-15);
-    }
-
-    #[test]
-    fn hanging_string_at_rest_has_potential_minus_one_half() {
-        let angles = vec![std::f64::consts::FRAC_PI_2; 10];
-        let e = energy(&angles, &[0.0; 10]);
-        assert!((e.potential + 0.5).abs() < 1e-12);
-        assert_eq!(e.kinetic(), 0.0);
-        assert!((tip(&angles) - Point::new(0.0, 1.0)).norm() < 1e-12);
-    }
-
-    #[test]
-    fn rigid_rotation_has_the_kinetic_energy_of_a_rod_about_its_end() {
-        // A straight string spinning at ω about the support: K = (1/2)(m L²/3) ω².
-        let n = 50;
-        let e = energy(&vec![0.3; n], &vec![2.0; n]);
-        assert!((e.kinetic() - 0.5 / 3.0 * 4.0).abs() < 1e-12);
     }
 }

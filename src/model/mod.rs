@@ -4,12 +4,14 @@
 
 pub mod analysis;
 pub mod bessel;
+pub mod energy;
 pub mod fold;
 pub mod geometry;
 pub mod scene;
 pub mod support;
 pub mod theory;
 
-pub use geometry::{Energy, Point};
+pub use energy::Energy;
+pub use geometry::Point;
 pub use scene::{Scene, ShakeStart};
 pub use support::{Support, SupportLedger, SupportNow};

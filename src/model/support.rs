@@ -6,7 +6,7 @@
 //! shaken support").
 
 use super::bessel;
-use super::geometry::Energy;
+use super::energy::Energy;
 use nalgebra::Vector2;
 
 /// How the support moves.

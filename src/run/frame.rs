@@ -5,7 +5,8 @@
 use super::estimate::ErrorEstimate;
 use super::trust::reference_energy;
 use crate::methods::{Method, Observation};
-use crate::model::geometry::{self, Energy, Point};
+use crate::model::Energy;
+use crate::model::geometry::{self, Point};
 use crate::model::support::{self, SupportNow};
 use nalgebra::Vector2;
 

@@ -10,7 +10,7 @@ use super::trust::steps_between;
 use crate::methods::Method;
 use crate::model::Scene;
 use crate::model::analysis::ZeroCrossings;
-use crate::model::support::tip_in_the_room;
+use crate::model::support::point_in_the_room;
 use serde::Serialize;
 
 /// How long the free fall of a released tip is checked: well before the bend reaches the tip
@@ -83,7 +83,7 @@ impl Probes {
             return;
         }
         let time = method.time();
-        let tip = || tip_in_the_room(method.support(), method.angles(), method.lengths());
+        let tip = || point_in_the_room(method.support(), method.tip());
         match self.scene {
             Scene::Release { .. } if time <= FREE_FALL_UNTIL => {
                 let tip = tip();

@@ -2,11 +2,14 @@
 //! when the run reaches each instant the two share ([`ShadowSteps::here`]), or ahead of it on
 //! a core of its own, each state sent over a bounded channel as it is made
 //! ([`ShadowSteps::ahead`]). The shadow never reads the run, so both give the same states,
-//! bit for bit; only where the CPU is spent differs.
+//! bit for bit; only where the CPU is spent differs. A state sent ahead carries the shadow's
+//! angles, not its nodes: the run draws nodes only at its frames, so a sine and cosine of
+//! every rod at every step would be spent for nothing.
 
 use super::trust::{ENERGY_BLOWUP, reference_energy};
 use crate::error::Diverged;
 use crate::methods::Method;
+use crate::model::SupportNow;
 use crate::model::geometry::{self, Point};
 use crate::model::support::{into_the_room, point_in_the_room};
 use crossbeam_channel::{Receiver, Sender};
@@ -60,16 +63,45 @@ impl Stepper {
 
     /// The nodes (support … tip), in the room.
     fn nodes(&self, nodes: &mut Vec<Point>) {
-        geometry::nodes_of(self.method.angles(), self.method.lengths(), nodes);
-        into_the_room(self.method.support(), nodes);
+        nodes_in_the_room(
+            self.method.angles(),
+            self.method.lengths(),
+            self.method.support(),
+            nodes,
+        );
+    }
+
+    /// The state after its latest step, its angles copied into `angles` (a spare buffer).
+    fn state(&self, mut angles: Vec<f64>) -> State {
+        angles.clear();
+        angles.extend_from_slice(self.method.angles());
+        State {
+            steps: self.method.steps(),
+            tip: self.tip(),
+            angles,
+            support: self.method.support(),
+        }
     }
 }
 
-/// One state the thread ahead made: the shadow after `steps` steps.
+/// The nodes (support … tip) of rods at `angles` of `lengths`, in the room where `support` is.
+fn nodes_in_the_room(
+    angles: &[f64],
+    lengths: Option<&[f64]>,
+    support: Option<SupportNow>,
+    nodes: &mut Vec<Point>,
+) {
+    geometry::nodes_of(angles, lengths, nodes); // eqs. (14)–(15)
+    into_the_room(support, nodes);
+}
+
+/// One state the thread ahead made: the shadow after `steps` steps, its tip, and what its
+/// nodes are drawn from, should the run ask for them.
 pub(super) struct State {
     steps: u64,
     tip: Point,
-    nodes: Vec<Point>,
+    angles: Vec<f64>,
+    support: Option<SupportNow>,
 }
 
 /// The shadow's states, stepped here or ahead.
@@ -77,10 +109,12 @@ pub(super) enum ShadowSteps {
     Here(Box<Stepper>),
     Ahead {
         states: Receiver<Result<State, Diverged>>,
-        /// Node buffers the run has read, sent back to be filled again.
-        spare: Sender<Vec<Point>>,
+        /// Angle buffers the run has read, sent back to be filled again.
+        spare: Sender<Vec<f64>>,
         /// The last state read.
         now: State,
+        /// The shadow's rod lengths (fixed over a run), to draw its nodes from its angles.
+        lengths: Option<Vec<f64>>,
         /// The thread's CPU nanoseconds so far.
         cpu_nanos: Arc<AtomicU64>,
     },
@@ -102,16 +136,11 @@ impl ShadowSteps {
             return self;
         };
         let (send, states) = crossbeam_channel::bounded(AHEAD);
-        let (spare, recycled) = crossbeam_channel::unbounded::<Vec<Point>>();
+        let (spare, recycled) = crossbeam_channel::unbounded::<Vec<f64>>();
         let cpu_nanos = Arc::new(AtomicU64::new(0));
         let counted = Arc::clone(&cpu_nanos);
-        let mut nodes = Vec::new();
-        stepper.nodes(&mut nodes);
-        let first = State {
-            steps: stepper.method.steps(),
-            tip: stepper.tip(),
-            nodes,
-        };
+        let first = stepper.state(Vec::new());
+        let lengths = stepper.method.lengths().map(<[f64]>::to_vec);
         // The thread owns the shadow; the run reads what it sends, in order, until it drops
         // the receiver, which ends the thread at its next send.
         let spawned = std::thread::Builder::new()
@@ -119,15 +148,9 @@ impl ShadowSteps {
             .spawn(move || {
                 let cpu = cpu_time::ThreadTime::now();
                 loop {
-                    let made = stepper.step().map(|()| {
-                        let mut nodes = recycled.try_recv().unwrap_or_default();
-                        stepper.nodes(&mut nodes);
-                        State {
-                            steps: stepper.method.steps(),
-                            tip: stepper.tip(),
-                            nodes,
-                        }
-                    });
+                    let made = stepper
+                        .step()
+                        .map(|()| stepper.state(recycled.try_recv().unwrap_or_default()));
                     let lost = made.is_err();
                     let nanos = u64::try_from(cpu.elapsed().as_nanos()).unwrap_or(u64::MAX);
                     counted.store(nanos, Ordering::Relaxed);
@@ -141,6 +164,7 @@ impl ShadowSteps {
                 states,
                 spare,
                 now: first,
+                lengths,
                 cpu_nanos,
             },
             // (The closure, and the shadow in it, are gone with the failed spawn.)
@@ -155,6 +179,7 @@ impl ShadowSteps {
                     states,
                     spare,
                     now: first,
+                    lengths,
                     cpu_nanos,
                 }
             }
@@ -182,7 +207,7 @@ impl ShadowSteps {
                         })
                     })?;
                     let read = std::mem::replace(now, next);
-                    let _ = spare.send(read.nodes);
+                    let _ = spare.send(read.angles);
                 }
                 Ok(())
             }
@@ -201,9 +226,8 @@ impl ShadowSteps {
     pub fn nodes(&self, nodes: &mut Vec<Point>) {
         match self {
             Self::Here(stepper) => stepper.nodes(nodes),
-            Self::Ahead { now, .. } => {
-                nodes.clear();
-                nodes.extend_from_slice(&now.nodes);
+            Self::Ahead { now, lengths, .. } => {
+                nodes_in_the_room(&now.angles, lengths.as_deref(), now.support, nodes);
             }
         }
     }
