@@ -230,12 +230,16 @@ impl Chain {
     /// stage's angles are φ plus a turn, `stage_turn`, which the solver applies as a rotation
     /// of the rods at φ.
     fn rk4(&mut self, start: f64, dt: f64) {
-        let n = self.phi.len();
-        for i in 0..n {
-            self.sum_phi[i] = self.omega[i];
-            self.sum_omega[i] = self.alpha[i];
-            self.stage_turn[i] = 0.5 * dt * self.omega[i];
-            self.stage_omega[i] = self.omega[i] + 0.5 * dt * self.alpha[i];
+        // The loops run over zipped slices, not indices: so they carry no bounds checks and
+        // vectorise however the compiler inlines this (indexed, they lost both once `step`
+        // took `Chain::solve` in, and a step ran about a tenth slower: docs/measurements.md).
+        let (half, sixth) = (0.5 * dt, dt / 6.0);
+        let stages = self.stage_turn.iter_mut().zip(&mut self.stage_omega);
+        let sums = self.sum_phi.iter_mut().zip(&mut self.sum_omega);
+        let now = self.omega.iter().zip(&self.alpha);
+        for (((turn, stage_omega), (sum_phi, sum_omega)), (&w, &a)) in stages.zip(sums).zip(now) {
+            (*sum_phi, *sum_omega) = (w, a);
+            (*turn, *stage_omega) = (half * w, w + half * a);
         }
         // Each stage's time, then its weight and how far the next stage advances.
         for (at, weight, advance) in [(0.5, 2.0, 0.5 * dt), (0.5, 2.0, dt), (1.0, 1.0, 0.0)] {
@@ -247,17 +251,24 @@ impl Chain {
                 &self.stage_omega,
                 &mut self.alpha,
             );
-            for i in 0..n {
-                let (w, a) = (self.stage_omega[i], self.alpha[i]);
-                self.sum_phi[i] += weight * w;
-                self.sum_omega[i] += weight * a;
-                self.stage_turn[i] = advance * w;
-                self.stage_omega[i] = self.omega[i] + advance * a;
+            let stages = self.stage_turn.iter_mut().zip(&mut self.stage_omega);
+            let sums = self.sum_phi.iter_mut().zip(&mut self.sum_omega);
+            let now = self.omega.iter().zip(&self.alpha);
+            for (((turn, stage_omega), (sum_phi, sum_omega)), (&omega, &a)) in
+                stages.zip(sums).zip(now)
+            {
+                let w = *stage_omega;
+                *sum_phi += weight * w;
+                *sum_omega += weight * a;
+                (*turn, *stage_omega) = (advance * w, omega + advance * a);
             }
         }
-        for i in 0..n {
-            self.phi[i] += dt / 6.0 * self.sum_phi[i];
-            self.omega[i] += dt / 6.0 * self.sum_omega[i];
+        let state = self.phi.iter_mut().zip(&mut self.omega);
+        for ((phi, omega), (&sum_phi, &sum_omega)) in
+            state.zip(self.sum_phi.iter().zip(&self.sum_omega))
+        {
+            *phi += sixth * sum_phi;
+            *omega += sixth * sum_omega;
         }
     }
 }
