@@ -56,20 +56,29 @@ impl ConstraintMatrix {
         let projector = |v: &Vector2<f64>| 3.0 * v * v.transpose();
         let mut p_prev = projector(&self.normal[0]);
         let mut diag = eye + p_prev;
-        for j in 0..n {
+        // Over zipped slices, the blocks of the joint before carried along: no bound checked
+        // and no vector's pointer reloaded at each joint.
+        let (mut upper_before, mut gain_before) = (Matrix2::zeros(), Matrix2::zeros());
+        let blocks = self
+            .pivot
+            .iter_mut()
+            .zip(&mut self.upper)
+            .zip(&mut self.gain);
+        for (j, (((pivot, upper), gain), normal)) in blocks.zip(&self.normal).enumerate() {
             if j > 0 {
-                let p = projector(&self.normal[j]);
-                diag = 2.0 * eye + p_prev + p - self.upper[j - 1] * self.gain[j - 1];
+                let p = projector(normal);
+                diag = 2.0 * eye + p_prev + p - upper_before * gain_before;
                 p_prev = p;
             }
-            self.upper[j] = p_prev - eye;
+            *upper = p_prev - eye;
             // A non-finite configuration makes NaN here, which the caller detects.
-            self.pivot[j] = inverse(diag);
-            self.gain[j] = if j + 1 < n {
-                self.pivot[j] * self.upper[j]
+            *pivot = inverse(diag);
+            *gain = if j + 1 < n {
+                *pivot * *upper
             } else {
                 Matrix2::zeros()
             };
+            (upper_before, gain_before) = (*upper, *gain);
         }
     }
 
@@ -78,14 +87,17 @@ impl ConstraintMatrix {
     /// which the caller fuses with what it does with x.
     pub(crate) fn forward(&self, h: f64, x: &mut [Vector2<f64>]) {
         let mut before = Vector2::zeros();
-        for (j, xj) in x.iter_mut().enumerate() {
+        let mut upper_before = Matrix2::zeros();
+        let blocks = self.pivot.iter().zip(&self.upper);
+        for (j, (xj, (pivot, upper))) in x.iter_mut().zip(blocks).enumerate() {
             let r = if j > 0 {
-                h * *xj - self.upper[j - 1] * before
+                h * *xj - upper_before * before
             } else {
                 h * *xj
             };
-            before = self.pivot[j] * r;
+            before = pivot * r;
             *xj = before;
+            upper_before = *upper;
         }
     }
 }

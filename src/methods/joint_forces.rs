@@ -172,8 +172,18 @@ impl ForceSolver {
         let mut p_prev = [0.0; 3];
         // The centripetal pull of rod i on its ends, (h_i/2) φ̇_i² t_i.
         let mut spin_prev = Vector2::zeros();
-        for (j, &rate) in omega.iter().enumerate() {
-            let t = self.tangent[j];
+        // Over zipped slices, as the back-substitution below: no bound checked and no
+        // vector's pointer reloaded at each rod.
+        let (tangent, offset, gain) = (
+            &self.tangent[..n],
+            &mut self.offset[..n],
+            &mut self.gain[..n],
+        );
+        let rows = omega
+            .iter()
+            .zip(tangent)
+            .zip(offset.iter_mut().zip(gain.iter_mut()));
+        for (j, ((&rate, &t), (offset, gain))) in rows.enumerate() {
             let p = projector(t);
             let l = rod(j);
             let spin = 0.5 * l * rate * rate * t;
@@ -197,7 +207,7 @@ impl ForceSolver {
             // adj(D') r'
             let (ar_x, ar_y) = (d[2] * rhs.x - d[1] * rhs.y, d[0] * rhs.y - d[1] * rhs.x);
             let g = Vector2::new(ar_x * inv_det, ar_y * inv_det);
-            self.offset[j] = g;
+            *offset = g;
             if j + 1 < n {
                 // U_j = 3P_j − I; adj(D'_j) U_j, then G_j = adj(D'_j) U_j / det.
                 let (uxx, uxy, uyy) = (p[0] - 1.0, p[1], p[2] - 1.0);
@@ -212,11 +222,11 @@ impl ForceSolver {
                     uxx * au[1] + uxy * au[3],
                     uxy * au[1] + uyy * au[3],
                 ];
-                self.gain[j] = au.map(|x| x * inv_det);
+                *gain = au.map(|x| x * inv_det);
                 carry = uau.map(|x| x * inv_det);
                 carry_rhs = Vector2::new(uxx * g.x + uxy * g.y, uxy * g.x + uyy * g.y);
             } else {
-                self.gain[j] = [0.0; 4];
+                *gain = [0.0; 4];
             }
             p_prev = p;
             spin_prev = spin;
@@ -224,16 +234,17 @@ impl ForceSolver {
         // Back-substitution, f_j = g_j − G_j f_{j+1}, and φ̈_i = −(6/(m_i h_i)) n_i · (f_i + f_{i+1}).
         let mut after = Vector2::zeros(); // f_{j+1}
         let mut max_force2: f64 = 0.0;
-        for j in (0..n).rev() {
-            let gain = &self.gain[j];
-            let f = self.offset[j]
+        let rows = self.gain[..n].iter().zip(&self.offset[..n]);
+        let rods = (self.force[..n].iter_mut().zip(&self.tangent[..n])).zip(&mut alpha[..n]);
+        for (j, ((gain, offset), ((force, t), alpha))) in rows.zip(rods).enumerate().rev() {
+            let f = offset
                 - Vector2::new(
                     gain[0] * after.x + gain[1] * after.y,
                     gain[2] * after.x + gain[3] * after.y,
                 );
-            self.force[j] = f;
-            let (t, sum, l) = (self.tangent[j], f + after, rod(j));
-            alpha[j] = -6.0 / (l * l) * (t.x * sum.y - t.y * sum.x);
+            *force = f;
+            let (sum, l) = (f + after, rod(j));
+            *alpha = -6.0 / (l * l) * (t.x * sum.y - t.y * sum.x);
             max_force2 = max_force2.max(f.norm_squared());
             after = f;
         }

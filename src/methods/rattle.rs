@@ -241,16 +241,21 @@ impl Rattle {
         let now = &mut self.now;
         let mut end_before = Vector2::zeros(); // the support
         let mut largest: f64 = 0.0;
-        for j in 0..now.angle.len() {
-            now.momentum[j] += kick;
-            now.centre[j] += dt / h * now.momentum[j];
-            now.angle[j] += dt / inertia * now.spin[j];
-            let (s, c) = now.angle[j].sin_cos();
-            now.tangent[j] = Vector2::new(c, s);
-            let gap = end_before - (now.centre[j] - half * now.tangent[j]);
+        // Over zipped slices: no bound checked, no vector's pointer reloaded at each rod.
+        let rods = (now.momentum.iter_mut().zip(&mut now.centre))
+            .zip(now.angle.iter_mut().zip(&now.spin))
+            .zip(&mut now.tangent);
+        for (work, (((momentum, centre), (angle, spin)), tangent)) in self.work.iter_mut().zip(rods)
+        {
+            *momentum += kick;
+            *centre += dt / h * *momentum;
+            *angle += dt / inertia * spin;
+            let (s, c) = angle.sin_cos();
+            *tangent = Vector2::new(c, s);
+            let gap = end_before - (*centre - half * *tangent);
             largest = largest.max(gap.norm_squared());
-            self.work[j] = gap;
-            end_before = now.centre[j] + half * now.tangent[j];
+            *work = gap;
+            end_before = *centre + half * *tangent;
         }
         largest.sqrt()
     }
@@ -268,22 +273,36 @@ impl Rattle {
         let now = &mut self.now;
         let mut after = Vector2::zeros(); // δ_{j+1}
         let mut largest: f64 = 0.0;
-        for j in (0..n).rev() {
-            let delta = self.work[j] - self.matrix.gain[j] * after;
-            self.multiplier[j] += delta;
-            now.centre[j] -= (after - delta) * per_length;
-            let turn = -half * self.matrix.normal[j].dot(&(delta + after)) * per_inertia;
-            now.angle[j] += turn;
-            now.tangent[j] = geometry::turned(now.tangent[j], turn);
-            if j + 1 < n {
-                let end = now.centre[j] + half * now.tangent[j];
-                let gap = end - (now.centre[j + 1] - half * now.tangent[j + 1]);
+        // From the free end back, over zipped slices; the start of the rod after (moved at
+        // the iteration before) carried along, and each joint's gap written one behind.
+        let mut start_after = Vector2::zeros();
+        let mut gap_after: Option<&mut Vector2<f64>> = None;
+        let joints = self.work[..n].iter_mut().zip(&self.matrix.gain[..n]);
+        let rods = (self.multiplier[..n]
+            .iter_mut()
+            .zip(&self.matrix.normal[..n]))
+        .zip(now.centre[..n].iter_mut().zip(&mut now.angle[..n]))
+        .zip(&mut now.tangent[..n]);
+        for ((work, gain), (((multiplier, normal), (centre, angle)), tangent)) in
+            joints.zip(rods).rev()
+        {
+            let delta = *work - gain * after;
+            *multiplier += delta;
+            *centre -= (after - delta) * per_length;
+            let turn = -half * normal.dot(&(delta + after)) * per_inertia;
+            *angle += turn;
+            *tangent = geometry::turned(*tangent, turn);
+            if let Some(gap_after) = gap_after {
+                let end = *centre + half * *tangent;
+                let gap = end - start_after;
                 largest = largest.max(gap.norm_squared());
-                self.work[j + 1] = gap;
+                *gap_after = gap;
             }
+            start_after = *centre - half * *tangent;
+            gap_after = Some(work);
             after = delta;
         }
-        let gap = -(now.centre[0] - half * now.tangent[0]);
+        let gap = -start_after;
         self.work[0] = gap;
         largest.max(gap.norm_squared()).sqrt()
     }
@@ -316,11 +335,15 @@ impl Rattle {
         let now = &mut self.now;
         let mut moved = 0.0;
         let (mass_rate, inertia_rate) = (h / dt, inertia / dt);
-        for i in 0..now.angle.len() {
-            let shift = now.centre[i] - self.before_centre[i];
+        let before = self.before_centre.iter().zip(&self.before_angle);
+        let rods =
+            (now.centre.iter().zip(&now.angle)).zip(now.momentum.iter_mut().zip(&mut now.spin));
+        for (((centre, angle), (momentum, spin)), (centre_before, angle_before)) in rods.zip(before)
+        {
+            let shift = centre - centre_before;
             moved += shift.x;
-            now.momentum[i] = mass_rate * shift + kick;
-            now.spin[i] = inertia_rate * (now.angle[i] - self.before_angle[i]);
+            *momentum = mass_rate * shift + kick;
+            *spin = inertia_rate * (angle - angle_before);
         }
         self.ledger.step(self.clock, dt, h * moved);
         self.clock += dt;
@@ -336,19 +359,24 @@ impl Rattle {
         let (per_length, per_inertia) = (1.0 / h, 1.0 / self.inertia());
         let now = &mut self.now;
         let mut end_before = Vector2::zeros(); // the support does not move
-        for j in 0..now.angle.len() {
-            let v = now.momentum[j] * per_length;
-            let w = now.spin[j] * per_inertia * half * self.matrix.normal[j];
+        let rods = now.momentum.iter().zip(&now.spin).zip(&self.matrix.normal);
+        for (work, ((momentum, spin), normal)) in self.work.iter_mut().zip(rods) {
+            let v = momentum * per_length;
+            let w = spin * per_inertia * half * normal;
             // d/dt g_j = v_end(j−1) − v_start(j); v_start = v − (h/2) θ̇ n, v_end = v + (h/2) θ̇ n.
-            self.work[j] = end_before - (v - w);
+            *work = end_before - (v - w);
             end_before = v + w;
         }
         self.matrix.forward(h, &mut self.work);
         let mut after = Vector2::zeros(); // μ_{j+1}
-        for j in (0..now.angle.len()).rev() {
-            let mu = self.work[j] - self.matrix.gain[j] * after;
-            now.momentum[j] -= after - mu;
-            now.spin[j] -= half * self.matrix.normal[j].dot(&(mu + after));
+        let n = self.work.len();
+        let joints = self.work[..n].iter().zip(&self.matrix.gain[..n]);
+        let rods =
+            (now.momentum[..n].iter_mut().zip(&mut now.spin[..n])).zip(&self.matrix.normal[..n]);
+        for ((work, gain), ((momentum, spin), normal)) in joints.zip(rods).rev() {
+            let mu = work - gain * after;
+            *momentum -= after - mu;
+            *spin -= half * normal.dot(&(mu + after));
             after = mu;
         }
     }
