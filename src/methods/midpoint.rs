@@ -168,6 +168,20 @@ fn multiplier_after(multiplier: &[Vector2<f64>], i: usize) -> Vector2<f64> {
         .unwrap_or_else(Vector2::zeros)
 }
 
+/// A rod's centre increment over a step of length `dt`, Δc_i = k v_i + (μ_i − μ_{i+1})/h +
+/// (k²/2) ĝ, from its joints' multipliers `(μ_i, μ_{i+1})` and `fall` = (k²/2) ĝ: what
+/// Newton's residuals and the state's update share.
+#[inline(always)]
+fn centre_increment(
+    dt: f64,
+    velocity: Vector2<f64>,
+    (multiplier, after): (Vector2<f64>, Vector2<f64>),
+    h: f64,
+    fall: Vector2<f64>,
+) -> Vector2<f64> {
+    dt * velocity + (multiplier - after) / h + fall
+}
+
 /// The normal n(θ) = (−sin θ, cos θ) of a rod with tangent t = (cos θ, sin θ).
 #[inline]
 fn normal(t: Vector2<f64>) -> Vector2<f64> {
@@ -473,8 +487,7 @@ impl Midpoint {
             };
             let f = turn[j] - dt * rate[j] + spin_gain * b.dot(&m);
             let af = f * slope[j].a_over_d;
-            // Δc_j = k v_j + (μ_j − μ_{j+1})/h + (k²/2) ĝ.
-            let increment = dt * velocity[j] + (multiplier[j] - after) / h + fall;
+            let increment = centre_increment(dt, velocity[j], (multiplier[j], after), h, fall);
             // R_j = g_j(q₀) + Δc_{j−1} − Δc_j + (h/2)(chord_{j−1} + chord_j).
             let residual = gap[j] + before_increment - increment + half * (before_chord + chord);
             let mut rhs = h * residual - 0.5 * h * h * (before_af + af);
@@ -594,8 +607,8 @@ impl Midpoint {
             .zip(self.angle.iter_mut().zip(&mut self.tangent))
             .zip(self.rate.iter_mut().zip(&self.turn));
         for (i, (((centre, velocity), (angle, tangent)), (rate, &turn))) in rods.enumerate() {
-            // Δc_i = k v_i + (μ_i − μ_{i+1})/h + (k²/2) ĝ, as in Newton's residuals.
-            let increment = dt * *velocity + (mu[i] - multiplier_after(mu, i)) / h + fall;
+            let joints = (mu[i], multiplier_after(mu, i));
+            let increment = centre_increment(dt, *velocity, joints, h, fall);
             moved += increment.x;
             let chord = Turn::lean(*tangent, turn).1;
             *centre += increment;
