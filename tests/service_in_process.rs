@@ -4,11 +4,10 @@
 
 mod common;
 
-use common::cli::{Recording, run_args, study_args};
+use common::cli::{Recording, Scratch, run_args, study_args};
 use rope::recording::memory::InMemory;
 use rope::service::notices::{Collected, Topic};
 use rope::service::{ServiceError, Session, run, study};
-use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::Ordering;
 use std::time::Duration;
@@ -18,16 +17,15 @@ fn listened() -> (Session, Arc<Collected>) {
     (Session::new(heard.clone(), "rope (a test)"), heard)
 }
 
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("rope-in-process-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// A scratch folder for one test, removed when the test ends, passed or failed.
+fn scratch(name: &str) -> Scratch {
+    Scratch::new(&format!("in-process-{name}"))
 }
 
 #[test]
 fn a_seed_run_longer_than_its_blow_up_is_warned_before_it_starts() {
     let dir = scratch("blow-up");
-    let file = dir.join("seed.rrd");
+    let file = dir.path("seed.rrd");
     let args = run_args(&[
         "--method",
         "seed",
@@ -60,7 +58,7 @@ fn a_seed_run_longer_than_its_blow_up_is_warned_before_it_starts() {
 #[test]
 fn a_run_stopped_midway_ends_interrupted_with_its_file_whole() {
     let dir = scratch("stopped");
-    let file = dir.join("endless.rrd");
+    let file = dir.path("endless.rrd");
     let args = run_args(&[
         "--duration",
         "inf",
@@ -92,7 +90,7 @@ fn a_run_stopped_midway_ends_interrupted_with_its_file_whole() {
 #[test]
 fn a_loop_of_two_passes_tells_a_summary_at_each_end() {
     let dir = scratch("loop");
-    let file = dir.join("loop.rrd");
+    let file = dir.path("loop.rrd");
     let args = run_args(&[
         "--loop",
         "2",
@@ -178,7 +176,7 @@ fn a_study_none_of_whose_methods_can_start_is_refused_naming_the_flag() {
         "--angle",
         "0",
         "--out",
-        dir.to_str().unwrap(),
+        dir.0.to_str().unwrap(),
     ]);
     let (session, _) = listened();
     match study::study(&args, &session) {
@@ -251,18 +249,18 @@ fn told_saving_to(file: &std::path::Path) -> Arc<Collected> {
 #[test]
 fn a_file_not_named_rrd_is_warned_of_and_still_written() {
     let dir = scratch("misnamed");
-    let file = dir.join("swing.bin");
+    let file = dir.path("swing.bin");
     let heard = told_saving_to(&file);
     assert!(heard.told(Topic::FileName), "{:?}", heard.notices());
     assert!(std::fs::read(&file).unwrap().starts_with(b"RRF2"));
-    let heard = told_saving_to(&dir.join("swing.rrd"));
+    let heard = told_saving_to(&dir.path("swing.rrd"));
     assert!(!heard.told(Topic::FileName), "{:?}", heard.notices());
 }
 
 #[test]
 fn a_fold_runs_the_midpoint_by_default_and_a_bend_of_too_few_rods_is_warned() {
     let dir = scratch("fold");
-    let file = dir.join("fold.rrd");
+    let file = dir.path("fold.rrd");
     let (session, heard) = listened();
     let args = run_args(&[
         "--scene",
@@ -338,7 +336,7 @@ fn a_shake_draws_its_support_moving_and_its_balance_and_a_release_sends_neither(
 #[test]
 fn a_sweep_draws_its_curve_writes_its_chart_beside_the_file_and_finds_the_first_resonance() {
     let dir = scratch("sweep");
-    let file = dir.join("s.rrd");
+    let file = dir.path("s.rrd");
     let args = run_args(&[
         "--scene",
         "shake",
@@ -359,10 +357,10 @@ fn a_sweep_draws_its_curve_writes_its_chart_beside_the_file_and_finds_the_first_
     let outcome = run::run(&args, &session).expect("the sweep is made");
     assert_eq!(outcome.exit_status, 0);
     // The chart and its data beside the recording: a row per frequency.
-    let csv = std::fs::read_to_string(dir.join("s-response.csv")).expect("the sweep's CSV");
+    let csv = std::fs::read_to_string(dir.path("s-response.csv")).expect("the sweep's CSV");
     assert_eq!(csv.lines().count(), 1 + 13, "{csv}");
     for chart in ["s-response.png", "s-response.svg"] {
-        assert!(dir.join(chart).exists(), "{chart}");
+        assert!(dir.path(chart).exists(), "{chart}");
     }
     // The tallest peak is the first resonance's, within a grid step (0.05) of ω₁ = 1.2024.
     let rows: Vec<(f64, f64)> = csv
@@ -415,7 +413,7 @@ fn a_resonance_the_sweeps_grid_misses_is_said_with_a_finer_grid() {
         "--segments",
         "20",
         "--save",
-        dir.join("c.rrd").to_str().unwrap(),
+        dir.path("c.rrd").to_str().unwrap(),
     ]);
     let (session, heard) = listened();
     run::run(&args, &session).expect("the sweep is made");
@@ -471,7 +469,7 @@ fn each_sweep_refusal_names_the_part_that_is_wrong() {
 #[test]
 fn a_wide_gap_and_a_coarse_bend_are_warned_of_by_run_and_by_study() {
     let dir = scratch("fold-warnings");
-    let save = dir.join("w.rrd");
+    let save = dir.path("w.rrd");
     let args = run_args(&[
         "--scene",
         "fold",
@@ -487,7 +485,7 @@ fn a_wide_gap_and_a_coarse_bend_are_warned_of_by_run_and_by_study() {
     let (session, heard) = listened();
     run::run(&args, &session).expect("the fold runs");
     assert!(heard.told(Topic::WideGap), "{:?}", heard.notices());
-    let out = dir.join("study");
+    let out = dir.path("study");
     let args = study_args(&[
         "--scene",
         "fold",
