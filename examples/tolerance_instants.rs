@@ -10,9 +10,11 @@
 //! change), and how far a cubic through its own steps misses its tip between them (against
 //! the run at k/6 at its own step nearest each 1/3 000).
 //!
-//! `cargo run --release --example tolerance_instants -- [EPS,EPS…] [SCENE,SCENE…] [DURATION]`: by
-//! default the fourteen runs of issue 61, 20° to 80° at 1e-3 and 1e-4, to t = 3, against
-//! `assets/tolerance-check/references.csv`. A scene is a release angle (`40`), a mode of the
+//! `cargo run --release --example tolerance_instants -- [EPS,EPS…] [SCENE,SCENE…] [DURATION]
+//! [PATH,PATH…]`: by default the fourteen runs of issue 61, 20° to 80° at 1e-3 and 1e-4, to
+//! t = 3, against `assets/tolerance-check/references.csv`, or against the least-erring reference
+//! of a scene that it and the references files or folders PATH hold, as the check reads them
+//! ([`best_read`]). A scene is a release angle (`40`), a mode of the
 //! check's (`mode=2`, a tip amplitude of 0.05), a fold by its gap (`fold=0.02`) or a shake from its
 //! steady state (`shake=2/1e-3`, frequency and amplitude). Past t = 3 (where those end), and for a
 //! fold or a shake, each scene's reference is computed as the tolerance check computes one, of the
@@ -27,7 +29,9 @@ use rope::model::{Scene, ShakeStart};
 use rope::plan::tolerance;
 use rope::study::read_reference::{CheckReference, read_all};
 use rope::study::tip_reference::{ConvergedTip, LOG_RATE, TipReference};
-use rope::study::tolerance_check::{Cell, JUDGE_RATE, REFERENCE_MARGIN, measure, reference_method};
+use rope::study::tolerance_check::{
+    Cell, JUDGE_RATE, REFERENCE_MARGIN, best_read, measure, reference_method,
+};
 use rope::study::trajectory::{Trajectory, frame_times};
 use std::path::PathBuf;
 use std::time::Instant;
@@ -86,14 +90,23 @@ fn main() -> anyhow::Result<()> {
         Some(text) => text.split(',').map(scene).collect::<anyhow::Result<_>>()?,
     };
     let duration = args::number(argv.next(), 3.0)?;
+    let mut paths = vec![PathBuf::from(REFERENCES)];
+    paths.extend(
+        argv.next()
+            .iter()
+            .flat_map(|p| p.split(','))
+            .map(PathBuf::from),
+    );
     let smallest = tolerances.iter().copied().fold(f64::INFINITY, f64::min);
     // The committed references are of the check's releases and modes, to t = 3.
     let committed = scenes
         .iter()
         .all(|s| matches!(s, Scene::Release { .. } | Scene::Mode { .. }));
     let references: Vec<CheckReference> = if committed && duration <= DURATION_READ {
-        read_all(&[PathBuf::from(REFERENCES)], &scenes, duration)?
-            .into_iter()
+        let read = read_all(&paths, &scenes, duration)?;
+        scenes
+            .iter()
+            .filter_map(|scene| best_read(&read, scene).cloned())
             .map(CheckReference::Read)
             .collect()
     } else {
