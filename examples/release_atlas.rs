@@ -37,7 +37,8 @@
 //! A reference whose own error is above [`REFINED_TO`] is made from N = 1600, 3200 and 6400
 //! instead (`--refine-once`: never further). `--read-any` reads the least-erring reference the
 //! files hold whatever its own error (the atlas trusts only the entries it can judge): at every
-//! 1/3000 the committed references from 50° to 80° (N = 6400) err by 1.4e-5 to 2.1e-5, where
+//! 1/3000 the committed references from 70° and 80° (N = 6400) err by 2.1e-5 and 1.5e-5 (from
+//! 50° and 60° by 1.6e-5 and 1.4e-5 until those from runs to N = 25 600 replaced them), where
 //! one computed here (N = 3200) errs by 3.5e-5. The graded rods' is doubled once more (to at most [`TWICE_REFINED`]) where it
 //! keeps the atlas from trusting an entry it needs: at an atlas angle, any entry (the choices
 //! read the row up to N = 1131); at a held-out angle, an entry whose neighbours the committed

@@ -25,21 +25,29 @@
 # merged into the committed graded-atlas.csv (an entry already there at that N is replaced) and
 # its chart redrawn. The committed entries at N = 1 600 were measured so: see
 # docs/measurements.md for its CPU time.
+#
+# `scripts/release-atlas.sh graded --redo 50,60 PATH`: those graded angles' rows (N = 16 … 1600)
+# measured again against the least-erring reference among the check's and PATH's (a references
+# file or folder, e.g. assets/reference-convergence/graded-references-25600), replacing their
+# lines in the committed graded-atlas.csv, and its chart redrawn. Seconds.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 rods="${*:-}"
 add=""
+redo=""
 case "$rods" in
     "") name=atlas ;;
     graded) name=graded-atlas ;;
     "graded --until 5") name=graded-atlas-t5 ;;
     "graded --add "[0-9]*) name=graded-atlas; add="${rods##* }" ;;
-    *) echo "usage: scripts/release-atlas.sh [graded [--until 5 | --add N]]" >&2; exit 2 ;;
+    "graded --redo "[0-9]*" "?*)
+        name=graded-atlas; set -- $rods; redo="$3"; more="$4"; rods="graded $redo" ;;
+    *) echo "usage: scripts/release-atlas.sh [graded [--until 5 | --add N | --redo ANGLES PATH]]" >&2; exit 2 ;;
 esac
 mkdir -p assets/release-atlas
 csv="assets/release-atlas/$name.csv"
 # The tolerance check's committed references (every atlas angle's), read instead of computed
-# (--read-any: at every 1/3000 they err by up to 2.1e-5 from 50° to 80°, where one computed
+# (--read-any: at every 1/3000 they err by up to 2.1e-5 from 70° and 80°, where one computed
 # here from runs up to N = 6400 errs by up to 5.9e-5); a reference to t = 5 is computed (they
 # end at t = 3). The graded rods' computed references (the held-out angles') are refined once
 # (runs up to N = 6400), and their rows measured to N = 1600.
@@ -47,6 +55,7 @@ references=""
 case "$rods" in
     *--until*) ;;
     graded) references="--read-any --refine-once --to 1600 --references assets/tolerance-check/references.csv" ;;
+    "graded "[0-9]*) references="--read-any --refine-once --to 1600 --references assets/tolerance-check/references.csv --references $more" ;;
     *) references="--read-any --references assets/tolerance-check/references.csv" ;;
 esac
 cargo run --release --locked --quiet --example release_atlas -- $rods $references > "$csv.new"
@@ -57,6 +66,14 @@ if [ -n "$add" ]; then
           | sort -t, -k2,2g -k3,3n; } > "$csv.merged"
     mv "$csv.merged" "$csv.new"
 fi
+if [ -n "$redo" ]; then
+    # The committed lines in their order, each redone angle's replaced by its new ones.
+    awk -F, 'NR == FNR { if (FNR > 1) fresh[$2] = fresh[$2] $0 "\n"; next }
+             !($2 in fresh) { print; next }
+             !($2 in done) { printf "%s", fresh[$2]; done[$2] = 1 }' "$csv.new" "$csv" > "$csv.merged"
+    mv "$csv.merged" "$csv.new"
+fi
 mv "$csv.new" "$csv"
 chart="${rods%% --add*}"
+[ -z "$redo" ] || chart=graded
 cargo run --release --locked --quiet --example release_atlas_chart -- $chart
