@@ -2,6 +2,9 @@
 //! whole run (CPU columns aside); a missing, duplicated or incomplete shard is an error that
 //! names what is missing; the SLURM script's command lines run the shards.
 
+mod common;
+
+use common::cli::Scratch;
 use rope::methods::MethodKind;
 use rope::model::Scene;
 use rope::study::shard::{self, MergeError, ReferenceFile, Shard};
@@ -19,12 +22,6 @@ fn spec() -> Spec {
         segments: vec![10, 20, 50],
         dts: vec![1e-3, 1e-2],
     }
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("rope-shard-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    dir
 }
 
 /// The study's reference of [`spec`], as a file would hold it.
@@ -63,7 +60,8 @@ fn measured(r: &Row) -> String {
 
 #[test]
 fn three_shards_merged_give_the_rows_and_findings_of_one_whole_run() {
-    let root = scratch("merge");
+    let scratch = Scratch::new("shard-merge");
+    let root = &scratch.0;
     let reference = reference_file(&spec());
     let whole = study::execute_with(
         &spec(),
@@ -73,7 +71,7 @@ fn three_shards_merged_give_the_rows_and_findings_of_one_whole_run() {
         &|| {},
     )
     .unwrap();
-    let dirs = run_shards(&root, &reference);
+    let dirs = run_shards(root, &reference);
     let merged = study::execute_merge(&dirs, &root.join("merged"), "the command").unwrap();
     let rows = |rows: &[Row]| rows.iter().map(measured).collect::<Vec<_>>();
     assert_eq!(rows(&merged.rows), rows(&whole.rows));
@@ -92,14 +90,14 @@ fn three_shards_merged_give_the_rows_and_findings_of_one_whole_run() {
     for chart in ["work_precision.png", "stability_map.png"] {
         assert!(root.join("merged").join(chart).exists(), "{chart}");
     }
-    let _ = std::fs::remove_dir_all(&root);
 }
 
 #[test]
 fn a_missing_duplicated_or_incomplete_shard_is_an_error_naming_what_is_missing() {
-    let root = scratch("errors");
+    let scratch = Scratch::new("shard-errors");
+    let root = &scratch.0;
     let reference = reference_file(&spec());
-    let dirs = run_shards(&root, &reference);
+    let dirs = run_shards(root, &reference);
 
     let err = shard::merge(&[dirs[0].clone(), dirs[2].clone()]).unwrap_err();
     assert!(matches!(err, MergeError::Missing { .. }), "{err}");
@@ -138,7 +136,6 @@ fn a_missing_duplicated_or_incomplete_shard_is_an_error_naming_what_is_missing()
             .contains(&format!("missing {method} N = {n} k = ")),
         "{err}"
     );
-    let _ = std::fs::remove_dir_all(&root);
 }
 
 #[test]
@@ -148,7 +145,8 @@ fn the_slurm_script_parses_and_its_array_tasks_run_the_shards() {
     assert!(syntax.status.success(), "{syntax:?}");
     let text = std::fs::read_to_string(script).unwrap();
     assert!(text.contains("#SBATCH --array=0-7"));
-    let root = scratch("slurm");
+    let scratch = Scratch::new("shard-slurm");
+    let root = &scratch.0;
     let flags = [
         "--segments",
         "10,20",
@@ -174,7 +172,7 @@ fn the_slurm_script_parses_and_its_array_tasks_run_the_shards() {
             c.arg(script)
                 .args(flags)
                 .env("SLURM_ARRAY_TASK_ID", task.to_string())
-                .env("OUT", &root)
+                .env("OUT", root)
                 .env("ROPE", rope);
             if dry {
                 c.env("DRY_RUN", "1");
@@ -193,7 +191,6 @@ fn the_slurm_script_parses_and_its_array_tasks_run_the_shards() {
     let dirs: Vec<PathBuf> = (0..8).map(|i| root.join(format!("shards/{i}"))).collect();
     let (_, _, rows) = shard::merge(&dirs).unwrap();
     assert_eq!(rows.len(), MethodKind::STUDIED.len() * 2);
-    let _ = std::fs::remove_dir_all(&root);
 }
 
 #[test]
@@ -210,7 +207,8 @@ fn a_shard_out_of_range_or_a_reference_of_another_study_is_refused_naming_the_fl
         "{stderr}"
     );
 
-    let root = scratch("other-reference");
+    let scratch = Scratch::new("shard-other-reference");
+    let root = &scratch.0;
     let made = Command::new(rope)
         .args(["study", "--duration", "0.5", "--segments", "10,20"])
         .args(["--reference-only", "--out", root.to_str().unwrap()])
@@ -244,5 +242,4 @@ fn a_shard_out_of_range_or_a_reference_of_another_study_is_refused_naming_the_fl
             && stderr.contains("to t = 1"),
         "{stderr}"
     );
-    let _ = std::fs::remove_dir_all(&root);
 }

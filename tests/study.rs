@@ -2,17 +2,14 @@
 //! chart files). The error models and the tolerance rule are `tests/estimate.rs`'s. Timings
 //! are not tested here (they live in benchmarks).
 
+mod common;
+
+use common::cli::Scratch;
 use rope::methods::MethodKind;
 use rope::model::Scene;
 use rope::study::{self, Spec, Status};
 
 const THIRTY: Scene = Scene::Release { angle_deg: 30.0 };
-
-fn scratch(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("rope-study-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    dir
-}
 
 #[test]
 fn tiny_grid_writes_a_row_per_run_with_statuses_errors_and_every_chart() {
@@ -23,8 +20,9 @@ fn tiny_grid_writes_a_row_per_run_with_statuses_errors_and_every_chart() {
         segments: vec![10, 50],
         dts: vec![1e-3, 3e-2],
     };
-    let out = scratch("tiny");
-    let outcome = study::execute(&spec, 100, &out, "test", &|| {}).expect("the study runs");
+    let scratch = Scratch::new("study-tiny");
+    let out = &scratch.0;
+    let outcome = study::execute(&spec, 100, out, "test", &|| {}).expect("the study runs");
     assert_eq!(outcome.rows.len(), 2 * 2 * MethodKind::ALL.len());
     // The seed scheme at N = 50 cannot take k = 3e-2 (its limit is about 1.7e-2 there).
     let seed_50_big = outcome
@@ -73,7 +71,6 @@ fn tiny_grid_writes_a_row_per_run_with_statuses_errors_and_every_chart() {
             .unwrap()
             .contains("Convergence in h")
     );
-    let _ = std::fs::remove_dir_all(out);
 }
 
 /// The study's tip error is the worst over the frames, not the final instant's (where errors
@@ -88,8 +85,9 @@ fn a_runs_tip_error_is_its_worst_over_the_frames_against_an_independent_fine_run
         segments: vec![8, 16],
         dts: vec![2e-3],
     };
-    let out = scratch("frames");
-    let outcome = study::execute(&spec, 200, &out, "test", &|| {}).expect("the study runs");
+    let scratch = Scratch::new("study-frames");
+    let out = &scratch.0;
+    let outcome = study::execute(&spec, 200, out, "test", &|| {}).expect("the study runs");
     let truth = study::trajectory::Trajectory::compute(&THIRTY, 400, spec.duration).unwrap();
     let resolution = outcome.reference.error_estimate() + 1e-4;
     let mut wider = 0;
@@ -122,7 +120,6 @@ fn a_runs_tip_error_is_its_worst_over_the_frames_against_an_independent_fine_run
             .unwrap()
             .contains(",tip_error,final_tip_error,")
     );
-    let _ = std::fs::remove_dir_all(out);
 }
 
 #[test]
@@ -151,8 +148,9 @@ fn a_small_grid_says_why_it_fits_no_order_and_prints_steps_as_given() {
         segments: vec![10, 20],
         dts: vec![1e-3, 1e-4],
     };
-    let out = scratch("small");
-    let outcome = study::execute(&spec, 40, &out, "test", &|| {}).expect("the study runs");
+    let scratch = Scratch::new("study-small");
+    let out = &scratch.0;
+    let outcome = study::execute(&spec, 40, out, "test", &|| {}).expect("the study runs");
     let findings = std::fs::read_to_string(out.join("findings.md")).unwrap();
     assert!(
         findings.contains("No fit for chain, rattle") && findings.contains("two or more N ≥ 20"),
@@ -169,5 +167,4 @@ fn a_small_grid_says_why_it_fits_no_order_and_prints_steps_as_given() {
         steps.iter().all(|k| *k == "1e-3" || *k == "1e-4"),
         "{steps:?}"
     );
-    let _ = std::fs::remove_dir_all(out);
 }
