@@ -35,6 +35,7 @@ cd "$(dirname "$0")/.."
 rods="${*:-}"
 add=""
 redo=""
+more=""
 case "$rods" in
     "") name=atlas ;;
     graded) name=graded-atlas ;;
@@ -54,8 +55,7 @@ csv="assets/release-atlas/$name.csv"
 references=""
 case "$rods" in
     *--until*) ;;
-    graded) references="--read-any --refine-once --to 1600 --references assets/tolerance-check/references.csv" ;;
-    "graded "[0-9]*) references="--read-any --refine-once --to 1600 --references assets/tolerance-check/references.csv --references $more" ;;
+    graded | "graded "[0-9]*) references="--read-any --refine-once --to 1600 --references assets/tolerance-check/references.csv${more:+ --references $more}" ;;
     *) references="--read-any --references assets/tolerance-check/references.csv" ;;
 esac
 cargo run --release --locked --quiet --example release_atlas -- $rods $references > "$csv.new"

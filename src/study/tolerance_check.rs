@@ -390,7 +390,8 @@ impl CheckSpec {
 /// finest reference its maker could afford (the committed graded ones come from runs up to
 /// N = 12 800, past the check's own 6 400, and from 70° and 80° they still err by 2.1e-5 and
 /// 1.5e-5 at every 1/3 000; from 50° and 60°, from runs to 25 600, by 4.5e-6 and 8.4e-6):
-/// computing one again would cost up to 20 minutes a scene to reach no finer. A tolerance it cannot judge is skipped, and the table says why.
+/// computing one again would cost up to 20 minutes a scene to reach no finer. A tolerance it
+/// cannot judge is skipped, and the table says why.
 pub fn best_read<'a>(read: &'a [ReadReference], scene: &Scene) -> Option<&'a ReadReference> {
     read.iter()
         .filter(|r| r.scene == *scene)
