@@ -35,11 +35,12 @@ fn main() -> anyhow::Result<()> {
 }
 
 /// The columns of the table: the atlas's N, every other one or so.
-const COLUMNS: [usize; 9] = [16, 32, 64, 141, 283, 566, 800, 1131, 1600];
+const COLUMNS: [usize; 10] = [16, 32, 64, 141, 283, 566, 800, 1131, 1600, 2263];
 
-/// Each atlas angle's reference (N, own error) and worst tip error × N where the atlas trusts
-/// it ([`Atlas::rows`]), as a Markdown table of the [`COLUMNS`] the atlas measured. The
-/// worst errors, the references' N and own errors are read from the atlas's `csv`.
+/// Each atlas angle's reference (N, own error) and worst tip error × N, in parentheses where
+/// the atlas does not trust it ([`Atlas::rows`]: below ten times its reference's own error), as
+/// a Markdown table of the [`COLUMNS`] the atlas measured. The worst errors, the references' N
+/// and own errors are read from the atlas's `csv`.
 fn table(csv: &str, atlas: &Atlas) -> String {
     // (angle, N) → (worst, reference N, own error), of the atlas's angles.
     let mut measured: HashMap<(String, usize), (f64, String, f64)> = HashMap::new();
@@ -77,6 +78,7 @@ fn table(csv: &str, atlas: &Atlas) -> String {
             let worst = measured.get(&(angle.clone(), n)).map(|m| m.0);
             let entry = match (trusted.iter().any(|&(m, _)| m == n), worst) {
                 (true, Some(worst)) => format!(" {:.3} |", worst * n as f64),
+                (false, Some(worst)) => format!(" ({:.3}) |", worst * n as f64),
                 _ => " – |".to_owned(),
             };
             out += &entry;

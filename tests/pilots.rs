@@ -602,10 +602,11 @@ fn from_37_degrees_at_1e_4_the_graded_atlas_reaches_far_enough_to_choose_the_gra
 /// 2.1e-5 and 1.5e-5, and that from 10° (the chain's whip at N = 3 200, extrapolated) by
 /// 2.8e-4: no atlas serves 1e-4 there, and the choice rests on a law or on the pilots. (At 60
 /// frames a unit the references looked fine enough, and the atlas's choices there missed 1e-4
-/// by up to 1.5 times between the frames.) From 20° to 60° the graded rods' own rows serve it:
-/// from 50° and 60° against references refined to N = 25 600 (4.5e-6 and 8.4e-6), which the
-/// rows were measured against again; before, those erred by 1.6e-5 and 1.4e-5 and served no
-/// more than 70°'s.
+/// by up to 1.5 times between the frames.) From 20° to 60° the graded rods' atlas serves it:
+/// at 20°, 30°, …, 60° their own rows, from 50° and 60° against references refined to
+/// N = 25 600 (4.5e-6 and 8.4e-6; before, those erred by 1.6e-5 and 1.4e-5 and served no more
+/// than 70°'s); between them the neighbours' law, from rows measured on to N = 2 263 against
+/// references that can judge 1e-4 there.
 #[test]
 fn at_1e_4_an_atlas_serves_only_where_its_reference_can_judge_at_every_instant() {
     for angle_deg in [10.0, 70.0, 80.0] {
@@ -617,7 +618,7 @@ fn at_1e_4_an_atlas_serves_only_where_its_reference_can_judge_at_every_instant()
         let (_, pilots) = tolerance::choose(1e-4, &scene, 3.0, u64::MAX).unwrap();
         assert_ne!(pilots.basis, pilot::Basis::Atlas, "{angle_deg}°");
     }
-    for angle_deg in [20.0, 30.0, 40.0, 50.0, 60.0] {
+    for angle_deg in [20.0, 25.0, 30.0, 37.0, 40.0, 45.0, 50.0, 52.0, 55.0, 60.0] {
         let scene = Scene::Release { angle_deg };
         graded_rods_from_their_atlas(1e-4, &scene, 3.0);
     }

@@ -10,6 +10,11 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
 
+/// The tightest tolerance an atlas serves: past a row's trusted bounds, the chart draws those a
+/// reference could judge it by (its own error at most a tenth of it), which the law reads for
+/// it ([`Atlas::rows_serving`]).
+const JUDGED: f64 = 1e-4;
+
 /// `{name}.svg` and `.png` into `dir`: the atlas of `rods` ("the rods'", "the graded
 /// rods'"), named so in the caption.
 pub fn write(dir: &Path, name: &str, rods: &str, atlas: &Atlas) -> anyhow::Result<()> {
@@ -29,10 +34,22 @@ fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, atlas: &Atlas, rods: 
         .rows()
         .filter(|(_, points)| points.iter().any(|&(_, e)| e > 1e-9))
         .collect();
+    // Past each row's trusted bounds, those its reference could still judge 1e-4 by.
+    let judged: Vec<Vec<(usize, f64)>> = rows
+        .iter()
+        .map(|(angle, trusted)| {
+            let serving = atlas.rows_serving(JUDGED).find(|(a, _)| a == angle);
+            let past = serving.map_or(Vec::new(), |(_, bounds)| bounds);
+            past.into_iter()
+                .skip(trusted.len().saturating_sub(1))
+                .collect()
+        })
+        .collect();
     let law = law(MethodKind::Chain);
     let finest = rows
         .iter()
         .flat_map(|(_, points)| points.iter().map(|&(n, _)| n))
+        .chain(judged.iter().flatten().map(|&(n, _)| n))
         .max()
         .unwrap_or(566);
     let (lo, hi) = (10.0, 1.4 * finest as f64);
@@ -90,6 +107,29 @@ fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, atlas: &Atlas, rods: 
             .label(format!("{angle}°"))
             .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], colour.stroke_width(2)));
         chart.draw_series(line.into_iter().map(|p| Circle::new(p, 3, colour.filled())))?;
+        let past: Vec<(f64, f64)> = judged[i]
+            .iter()
+            .map(|&(n, e)| (n as f64, e * n as f64))
+            .collect();
+        if past.len() > 1 {
+            chart.draw_series(DashedLineSeries::new(
+                past.clone(),
+                4,
+                4,
+                colour.stroke_width(1),
+            ))?;
+            chart.draw_series(past.into_iter().skip(1).map(|p| Circle::new(p, 3, colour)))?;
+        }
+    }
+    if judged.iter().any(|past| past.len() > 1) {
+        // A legend entry for the dashed continuations, in the first row's colour.
+        let colour = angle_colour(0, rows.len());
+        chart
+            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())?
+            .label(format!(
+                "hollow, dashed: a bound (error + its reference's own) read only for a tolerance ≥ {JUDGED:.0e}, which its reference could judge"
+            ))
+            .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], colour.stroke_width(1)));
     }
     let grey = RGBColor(110, 110, 110);
     chart

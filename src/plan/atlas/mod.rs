@@ -22,8 +22,12 @@
 //! errors at each N is taken, times a margin measured at the held-out angles 5°, 15°, …, 85°: the
 //! largest ratio of a held-out angle's error to that of its two neighbours (where its reference is
 //! too coarse to bound its error, what the error is at least: the measured error less the
-//! reference's own). Between the atlas's N, the error is taken as first order from the largest
-//! constant (error × N) at that N and above, from errors at least ten times their references' own.
+//! reference's own). The neighbours' errors it reads are bounds (the measured error plus its
+//! reference's own) against references that could judge the tolerance, as the angle's own row and
+//! the envelope read them; the margin, a ratio, reads only errors at least ten times their
+//! references' own (a reference's own error grows a bound's constant with N: the untrusted
+//! bounds are read only as far as a choice needs them). Between the atlas's N, the error is
+//! taken as first order from the largest constant (bound × N) at that N and above.
 //! Between the atlas's first and last angles, a tolerance may also be met by an N where every
 //! angle was measured: the largest bound among them all (their envelope) times how far one angle
 //! strays above all the others there at most (the envelope's margin, each angle left out in turn),
@@ -31,10 +35,10 @@
 //! one N (from 30° and 40° at N = 1 131 the graded rods err by 1.8e-5, 35° between them by
 //! 6.6e-5): the neighbours' margin then grows with the dip, where the envelope's does not.
 //! The atlas serves only what it measured: the rods, a release, runs to t ≤ 3, N ≤ 566 (below
-//! 20° 1131; the graded rods' 1600); elsewhere the method's one law stands. The
-//! graded rods have a second atlas, to t = 5 from 40° ([`LONGER_WINDOW`], [`LONGER_FROM`]), for
-//! runs from t = 3 to 5, where the one law, fitted to t ≤ 3, does not cover the run and the
-//! pilots' figure rules instead.
+//! 20° 1131; the graded rods' 1600, from 20° to 60° 2263); elsewhere the method's one law
+//! stands. The graded rods have a second atlas, to t = 5 from 40° ([`LONGER_WINDOW`],
+//! [`LONGER_FROM`]), for runs from t = 3 to 5, where the one law, fitted to t ≤ 3, does not
+//! cover the run and the pilots' figure rules instead.
 
 use crate::methods::MethodKind;
 use crate::model::Scene;
@@ -109,6 +113,18 @@ impl Row {
     fn floor(&self, j: usize) -> Option<f64> {
         let (worst, own) = self.measured[j]?;
         (worst > own).then_some(worst - own)
+    }
+
+    /// The bound at the `j`-th of [`SEGMENTS`] a law serving `tolerance` may read: a trusted
+    /// entry's, or any entry's measured against a reference that could judge `tolerance` (the
+    /// tolerance check's rule, [`serves`]): its error plus its reference's own bounds the
+    /// error all the same. Trust (an error ten times its reference's own) is what a ratio
+    /// needs, the margin; a bound needs only a reference fit to judge what it serves.
+    fn bound_for(&self, j: usize, tolerance: f64) -> Option<f64> {
+        self.bound[j].or_else(|| {
+            let (worst, own) = self.measured[j]?;
+            (own <= REFERENCE_MARGIN * tolerance).then_some(worst + own)
+        })
     }
 }
 
@@ -330,9 +346,46 @@ impl Atlas {
         })
     }
 
+    /// Each atlas angle's bounds from N = 16 up that a law serving `tolerance` reads (trusted,
+    /// or measured against a reference that could judge `tolerance`), as (N, bound): the chart
+    /// draws past the trusted ones ([`Atlas::rows`]) what such references still bound.
+    pub fn rows_serving(
+        &self,
+        tolerance: f64,
+    ) -> impl Iterator<Item = (f64, Vec<(usize, f64)>)> + '_ {
+        self.rows.iter().map(move |r| {
+            let bounds = SEGMENTS
+                .iter()
+                .enumerate()
+                .map_while(|(j, &n)| Some((n, r.bound_for(j, tolerance)?)))
+                .collect();
+            (r.angle_deg, bounds)
+        })
+    }
+
     /// The larger of the two atlas rows' bounds around `angle_deg` at each of [`SEGMENTS`] (the
     /// one row at an atlas angle), where both are trusted; `None` outside the atlas's angles.
     pub fn neighbours(&self, angle_deg: f64) -> Option<[Option<f64>; SEGMENTS.len()]> {
+        self.neighbours_by(angle_deg, |row, j| row.bound[j])
+    }
+
+    /// As [`Atlas::neighbours`], with every bound a law serving `tolerance` may read
+    /// ([`Row::bound_for`]).
+    fn neighbours_serving(
+        &self,
+        angle_deg: f64,
+        tolerance: f64,
+    ) -> Option<[Option<f64>; SEGMENTS.len()]> {
+        self.neighbours_by(angle_deg, |row, j| row.bound_for(j, tolerance))
+    }
+
+    /// The larger of `bound` of the two atlas rows around `angle_deg` at each of [`SEGMENTS`],
+    /// where both have one; `None` outside the atlas's angles.
+    fn neighbours_by(
+        &self,
+        angle_deg: f64,
+        bound: impl Fn(&Row, usize) -> Option<f64>,
+    ) -> Option<[Option<f64>; SEGMENTS.len()]> {
         let i = self.rows.iter().position(|r| r.angle_deg >= angle_deg)?;
         let high = &self.rows[i];
         let low = match high.angle_deg == angle_deg {
@@ -340,7 +393,7 @@ impl Atlas {
             false => self.rows.get(i.checked_sub(1)?)?,
         };
         Some(std::array::from_fn(|j| {
-            match (low.bound[j], high.bound[j]) {
+            match (bound(low, j), bound(high, j)) {
                 (Some(a), Some(b)) => Some(a.max(b)),
                 _ => None,
             }
@@ -352,9 +405,9 @@ impl Atlas {
     /// tolerance neither reaches.
     /// - At an angle the atlas measured, that angle's own row: the fewest N it measured whose
     ///   bound holds `tolerance` (`Atlas::measured`). No margin: nothing is interpolated.
-    /// - Everywhere, the interpolated law: first order, its constant the largest error × N of
-    ///   the angle's neighbours (times [`Atlas::margin`]) at the fewest N of the atlas from
-    ///   which it holds `tolerance`.
+    /// - Everywhere, the interpolated law: first order, its constant the largest bound × N of
+    ///   the angle's neighbours (wherever their references could judge `tolerance`, times
+    ///   [`Atlas::margin`]) at the fewest N of the atlas from which it holds `tolerance`.
     /// - Between the atlas's angles, the envelope: the fewest N whose largest bound over every
     ///   angle measured, times [`Atlas::envelope_margin`], holds `tolerance`
     ///   (`Atlas::enveloped`).
@@ -409,15 +462,32 @@ impl Atlas {
         Some(asking(SEGMENTS[j], tolerance))
     }
 
-    /// The first-order law from the neighbours' rows times the margin (see [`Atlas::model`]).
+    /// The first-order law from the neighbours' rows times the margin (see [`Atlas::model`]),
+    /// the one asking the fewest segments of those read to each N from the neighbours' last
+    /// trusted one up to their last bounded for `tolerance` ([`Row::bound_for`]). A bound whose
+    /// reference merely could judge `tolerance` carries that reference's own error, which
+    /// grows its constant with N: it is read only as far as a choice needs it, and the law
+    /// from the trusted bounds alone is always among those weighed.
     fn interpolated(&self, angle_deg: f64, tolerance: f64) -> Option<ErrorModel> {
-        let bound = self.neighbours(angle_deg)?;
-        let trusted = bound.iter().take_while(|b| b.is_some()).count();
-        let last = *SEGMENTS.get(trusted.checked_sub(1)?)?;
-        // Each trusted N with the largest constant (error × N) there and above: a bound at
-        // every N from it up.
+        let leading =
+            |bound: [Option<f64>; SEGMENTS.len()]| bound.iter().take_while(|b| b.is_some()).count();
+        let bound = self.neighbours_serving(angle_deg, tolerance)?;
+        let trusted = self.neighbours(angle_deg).map_or(0, leading);
+        (trusted.max(1)..=leading(bound))
+            .filter_map(|end| self.law_to(&bound[..end], tolerance))
+            .min_by_key(|&(needed, _)| needed)
+            .map(|(_, law)| law)
+    }
+
+    /// The first-order law from `bound` (the neighbours' bounds at [`SEGMENTS`] from N = 16 on,
+    /// every one given) times the margin, with the segments it asks for `tolerance`: a bound
+    /// at every N from where it starts to the last of `bound`; `None` if it would ask more.
+    fn law_to(&self, bound: &[Option<f64>], tolerance: f64) -> Option<(usize, ErrorModel)> {
+        let last = *SEGMENTS.get(bound.len().checked_sub(1)?)?;
+        // Each N with the largest constant (bound × N) there and above: a bound at every N
+        // from it up.
         let mut tail = 0f64;
-        let constants: Vec<(usize, f64)> = (0..trusted)
+        let constants: Vec<(usize, f64)> = (0..bound.len())
             .rev()
             .map(|j| {
                 tail = tail.max(bound[j].unwrap_or(f64::INFINITY) * SEGMENTS[j] as f64);
@@ -425,7 +495,7 @@ impl Atlas {
             })
             .collect();
         // The fewest segments each constant asks for, never fewer than where it starts to
-        // bound, and none past the atlas's trusted N.
+        // bound, and none past the last N read.
         let (needed, from, constant) = constants
             .into_iter()
             .map(|(n, c)| {
@@ -440,11 +510,12 @@ impl Atlas {
             true => tolerance * (from as f64 - 0.5) / self.margin,
             false => 0.0,
         };
-        Some(ErrorModel {
+        let law = ErrorModel {
             constant: constant.max(at_least),
             order: 1.0,
             safety: self.margin,
-        })
+        };
+        Some((needed, law))
     }
 }
 
