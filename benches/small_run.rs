@@ -7,7 +7,8 @@
 //! alone, and its steps alone (the floor).
 //!
 //! `cargo bench --bench small_run`; the accuracy is printed before the timings, and the table
-//! in `docs/measurements.md` comes from both.
+//! in `docs/measurements.md` comes from both. Beside them, what `--tolerance` spends choosing
+//! a small mode's run, which costs as much as the run (`small_mode_planning`).
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use rope::methods::MethodKind;
@@ -97,5 +98,25 @@ fn small_runs(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, small_runs);
+/// What `--tolerance` spends choosing before a small mode's run (mode 2, tip amplitude 0.05,
+/// to t = 3 at 1e-3; the run it chooses, the chain at N = 33, takes about 2 ms): the linear
+/// theory worked out alone (`committed::from_theory`), and the whole choice, the seed's pilot
+/// at N = 16 included (`tolerance::choose`).
+fn small_mode_planning(c: &mut Criterion) {
+    use rope::plan::{committed, tolerance};
+    let mode = Scene::Mode {
+        number: 2,
+        amplitude: 0.05,
+    };
+    let mut group = c.benchmark_group("small_mode_planning");
+    group.bench_function("theory", |b| {
+        b.iter(|| committed::from_theory(black_box(&mode), 3.0, 1e-3).expect("served"))
+    });
+    group.bench_function("choose", |b| {
+        b.iter(|| tolerance::choose(1e-3, black_box(&mode), 3.0, u64::MAX).expect("a choice"))
+    });
+    group.finish();
+}
+
+criterion_group!(benches, small_runs, small_mode_planning);
 criterion_main!(benches);

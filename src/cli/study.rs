@@ -90,7 +90,8 @@ pub struct StudyArgs {
     /// reference's tip every 1/3000) and a chart; about an hour and a half on 2 cores, some
     /// 20 minutes with every reference read (--references).
     /// `quick`: the release from 30° and mode 1 at 1e-2 only (what CI runs); `unseen`: the
-    /// releases from 37° and 52° alone, which no atlas measured (about half an hour).
+    /// releases from 37° and 52° alone, which no atlas measured (about half an hour); `modes`:
+    /// modes 1 and 2 alone, which the linear theory chooses for (seconds with --references).
     #[arg(long, value_enum, value_name = "SIZE", num_args = 0..=1, default_missing_value = "full", conflicts_with_all = ["long_run", "blow_up", "estimate_check"])]
     pub tolerance_check: Option<CheckSize>,
 
@@ -368,4 +369,6 @@ pub enum CheckSize {
     Quick,
     /// The full check's two releases between the atlas's measured angles (37° and 52°).
     Unseen,
+    /// The full check's two small modes (modes 1 and 2), which the linear theory chooses for.
+    Modes,
 }

@@ -338,6 +338,7 @@ fn tolerance_check(
         CheckSize::Full => CheckSpec::default(),
         CheckSize::Quick => CheckSpec::quick(),
         CheckSize::Unseen => CheckSpec::unseen(),
+        CheckSize::Modes => CheckSpec::modes(),
     };
     let grid_runs: usize = spec
         .grid

@@ -102,6 +102,22 @@ impl CheckSpec {
         }
     }
 
+    /// The check at its two small modes alone (modes 1 and 2, tip amplitude 0.05):
+    /// where a change to the linear theory, which chooses for them, shows, in seconds with their
+    /// references read.
+    pub fn modes() -> Self {
+        let full = Self::default();
+        Self {
+            scenes: full
+                .scenes
+                .iter()
+                .copied()
+                .filter(|scene| matches!(scene, Scene::Mode { .. }))
+                .collect(),
+            ..full
+        }
+    }
+
     /// The small check CI runs: the release from 30° and mode 1 at EPS = 1e-2, against the
     /// reference method extrapolated from N = 400, 800 and 1600 (from N = 200, 400 and 800 the
     /// release's own error at every instant is 1.0e-3, too coarse to judge 1e-2).
