@@ -336,14 +336,7 @@ impl Atlas {
     /// Each atlas angle's trusted bounds, as (N, worst error) from N = 16 up: what the chart
     /// draws.
     pub fn rows(&self) -> impl Iterator<Item = (f64, Vec<(usize, f64)>)> + '_ {
-        self.rows.iter().map(|r| {
-            let trusted = SEGMENTS
-                .iter()
-                .zip(r.bound)
-                .map_while(|(&n, b)| Some((n, b?)))
-                .collect();
-            (r.angle_deg, trusted)
-        })
+        self.rows_by(|row, j| row.bound[j])
     }
 
     /// Each atlas angle's bounds from N = 16 up that a law serving `tolerance` reads (trusted,
@@ -353,13 +346,20 @@ impl Atlas {
         &self,
         tolerance: f64,
     ) -> impl Iterator<Item = (f64, Vec<(usize, f64)>)> + '_ {
-        self.rows.iter().map(move |r| {
-            let bounds = SEGMENTS
-                .iter()
-                .enumerate()
-                .map_while(|(j, &n)| Some((n, r.bound_for(j, tolerance)?)))
+        self.rows_by(move |row, j| row.bound_for(j, tolerance))
+    }
+
+    /// Each atlas angle's `bound` at [`SEGMENTS`] from N = 16 up to the first it has none, as
+    /// (N, bound).
+    fn rows_by(
+        &self,
+        bound: impl Fn(&Row, usize) -> Option<f64> + Copy + 'static,
+    ) -> impl Iterator<Item = (f64, Vec<(usize, f64)>)> + '_ {
+        self.rows.iter().map(move |row| {
+            let bounds = (0..SEGMENTS.len())
+                .map_while(|j| Some((SEGMENTS[j], bound(row, j)?)))
                 .collect();
-            (r.angle_deg, bounds)
+            (row.angle_deg, bounds)
         })
     }
 
