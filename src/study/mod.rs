@@ -25,6 +25,7 @@ pub mod axes;
 pub mod blow_up;
 pub mod charts;
 pub mod check_chart;
+pub mod check_timing;
 pub mod estimate_check;
 pub mod findings;
 pub mod grid;

@@ -5,6 +5,7 @@
 //! its default step and at its tolerance step, that also holds EPS. A scene's reference is
 //! computed, or read back from a references file where one can judge the check's smallest EPS.
 
+use super::check_timing::{RETIMED_BELOW, fastest, fastest_side_by_side, timed_run};
 use super::progress::{Progress, Stopped};
 use super::read_reference::{CheckReference, ReadReference};
 pub use super::tip_reference::JUDGE_RATE;
@@ -18,10 +19,7 @@ use crate::plan::runs::{self, RunRequest};
 use crate::plan::{choice, pilot};
 use crate::run::cost::Limits;
 use crate::run::estimate::TipBound;
-use crate::run::simulate::{self, Options};
 use rayon::prelude::*;
-use std::ops::ControlFlow;
-use std::time::Instant;
 
 /// A tolerance is checked only where the reference's own error is at most this fraction of it.
 pub const REFERENCE_MARGIN: f64 = 0.1;
@@ -181,10 +179,14 @@ pub struct Cell {
     pub skipped: Option<String>,
     /// The chosen run, measured; its `seconds` are the run's with its shadow.
     pub chosen: Option<Measured>,
-    /// Seconds the choice took: the pilots, and the rule (timed as runs are, [`fastest`]).
+    /// Seconds the choice took: the pilots, and the rule (timed as runs are, [`fastest`]; where
+    /// it, the chosen run and the grid's cheapest each take milliseconds, the three timed again
+    /// side by side, [`fastest_side_by_side`]).
     pub pilot_seconds: f64,
     /// What the choice rests on: a pilot that held, the pilots' model or the committed one.
     pub basis: Option<pilot::Basis>,
+    /// The grid's cheapest run that holds EPS (its seconds timed again beside the choice's
+    /// where all are of milliseconds: [`Cell::pilot_seconds`]).
     pub cheapest: Option<Measured>,
 }
 
@@ -262,25 +264,8 @@ pub fn measure(
     shadow: Option<TipBound>,
     reference: &impl ConvergedTip,
 ) -> Option<Measured> {
-    let options = Options {
-        duration,
-        log_rate: LOG_RATE,
-        frame_grid: None,
-    };
-    let (seconds, run) = fastest(|| {
-        Some(if let Some(bound) = shadow {
-            let run = simulate::run_shadowed(method, scene, segments, dt, bound, &options, |_| {});
-            (
-                run.refused.is_some() || run.diverged.is_some(),
-                run.max_tip_bound,
-            )
-        } else {
-            let mut run = method.build(scene, segments, dt).ok()?;
-            let outcome =
-                simulate::run(run.as_mut(), &options, None, |_| ControlFlow::Continue(()));
-            (outcome.diverged.is_some(), None)
-        })
-    });
+    let run_at = (method, segments, dt);
+    let (seconds, run) = fastest(|| timed_run(scene, run_at, duration, shadow));
     let (stopped, estimate) = run?;
     if stopped {
         return None;
@@ -306,6 +291,50 @@ pub fn measure(
     })
 }
 
+/// Where a choice's planning (`request`), its run (its shadow bounding as `shadow` says; none
+/// where it was `rehearsed`, flown as the pilot that held) and the grid's cheapest run each
+/// took under [`RETIMED_BELOW`], times the three again side by side
+/// ([`fastest_side_by_side`]) and keeps those timings: a ratio of milliseconds read from
+/// timings made minutes apart moves with the machine.
+fn retime_side_by_side(
+    cell: &mut Cell,
+    request: &RunRequest,
+    shadow: Option<TipBound>,
+    rehearsed: bool,
+    duration: f64,
+) {
+    let (Some(chosen), Some(cheapest)) = (cell.chosen, cell.cheapest) else {
+        return;
+    };
+    let parts = [cell.pilot_seconds, chosen.seconds, cheapest.seconds];
+    if parts.iter().any(|&seconds| seconds >= RETIMED_BELOW) {
+        return;
+    }
+    let scene = cell.scene;
+    let run =
+        |m: Measured, shadow| timed_run(&scene, (m.method, m.segments, m.dt), duration, shadow);
+    let mut plan = || {
+        std::hint::black_box(runs::plan_scene(request, scene, |_| {}).is_ok());
+    };
+    let mut chosen_run = || {
+        if !rehearsed {
+            std::hint::black_box(run(chosen, shadow));
+        }
+    };
+    let mut cheapest_run = || {
+        std::hint::black_box(run(cheapest, None));
+    };
+    let [planning, chosen_seconds, cheapest_seconds] =
+        fastest_side_by_side([&mut plan, &mut chosen_run, &mut cheapest_run]);
+    cell.pilot_seconds = planning;
+    if let (Some(measured), false) = (cell.chosen.as_mut(), rehearsed) {
+        measured.seconds = chosen_seconds;
+    }
+    if let Some(measured) = cell.cheapest.as_mut() {
+        measured.seconds = cheapest_seconds;
+    }
+}
+
 /// What `rope run --tolerance EPS --duration D --log-rate LOG_RATE` asks of a scene, within
 /// any memory.
 fn request(eps: f64, duration: f64) -> RunRequest {
@@ -326,33 +355,6 @@ fn request(eps: f64, duration: f64) -> RunRequest {
         error_estimate: true,
         tolerance: Some(eps),
     }
-}
-
-/// Runs under this many wall seconds are timed again ([`fastest`]).
-pub const RETIMED_BELOW: f64 = 0.05;
-
-/// At most this many timings of a run under [`RETIMED_BELOW`].
-pub const TIMINGS: usize = 7;
-
-/// `work`'s wall seconds, the fastest of up to [`TIMINGS`] where it takes under
-/// [`RETIMED_BELOW`] (a run of milliseconds moves by half from one timing to the next on a
-/// busy machine), and what it returned the first time.
-pub fn fastest<T>(mut work: impl FnMut() -> T) -> (f64, T) {
-    let started = Instant::now();
-    let first = work();
-    let mut seconds = started.elapsed().as_secs_f64();
-    let mut spent = seconds;
-    for _ in 1..TIMINGS {
-        if seconds >= RETIMED_BELOW || spent >= RETIMED_BELOW * 2.0 {
-            break;
-        }
-        let again = Instant::now();
-        std::hint::black_box(work());
-        let took = again.elapsed().as_secs_f64();
-        seconds = seconds.min(took);
-        spent += took;
-    }
-    (seconds, first)
 }
 
 /// The step a run of step `dt` is judged at: the largest at most `dt` that puts a step on
@@ -545,6 +547,7 @@ pub fn check(
                         // The run was the pilot that held: its CPU is in the pilots'.
                         chosen.seconds = 0.0;
                     }
+                    retime_side_by_side(&mut cell, &request, bound, rehearsed, spec.duration);
                 }
                 // (A request with a tolerance is always planned by it.)
                 Ok((None, _)) => cell.skipped = Some("no choice was made".to_owned()),
