@@ -82,3 +82,26 @@ pub(super) fn timed_run(
         (outcome.diverged.is_some(), None)
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::cell::RefCell;
+
+    /// The parts are timed in turn, round after round, each [`TIMINGS`] times: never one part's
+    /// timings all together.
+    #[test]
+    fn the_parts_of_a_ratio_are_timed_in_turn_round_after_round() {
+        let order = RefCell::new(Vec::new());
+        let mut first = || order.borrow_mut().push(0);
+        let mut second = || order.borrow_mut().push(1);
+        let mut third = || order.borrow_mut().push(2);
+        let seconds = fastest_side_by_side([&mut first, &mut second, &mut third]);
+        let rounds: Vec<usize> = (0..TIMINGS).flat_map(|_| [0, 1, 2]).collect();
+        assert_eq!(order.into_inner(), rounds);
+        assert!(
+            seconds.iter().all(|s| s.is_finite() && *s >= 0.0),
+            "{seconds:?}"
+        );
+    }
+}
