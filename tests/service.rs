@@ -336,14 +336,17 @@ fn a_frozen_viewer_counts_as_gone_once_it_takes_nothing_for_5_s() {
     std::thread::sleep(Duration::from_millis(1500));
     signal(&viewer, "-STOP"); // alive, connected, and reading nothing
     let frozen = Instant::now();
-    let status = wait_for(&mut run, Duration::from_secs(30));
+    let status = wait_for(&mut run, Duration::from_secs(40));
     signal(&viewer, "-KILL");
     viewer.wait().ok();
     let status = status.expect("the run stopped");
     let stderr = stderr_of(&mut run);
-    // Rerun's and this link's queues fill first, then 5 s of nothing taken.
+    // Rerun's and this link's queues fill first, then 5 s of nothing taken. The queues hold
+    // messages, which Rerun's batcher sends at its own pace whatever the data rate (the same
+    // at --realtime 4 and 16): some 9 s here, more on a busy machine (14.1 to 15.4 s in all,
+    // measured with every core busy, where 15 s had been the bound).
     assert!(
-        frozen.elapsed() < Duration::from_secs(15),
+        frozen.elapsed() < Duration::from_secs(25),
         "took {:?}: {stderr}",
         frozen.elapsed()
     );
