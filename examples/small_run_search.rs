@@ -46,7 +46,7 @@ fn main() -> anyhow::Result<()> {
     let steps = [
         0.1, 0.05, 0.04, 0.025, 0.02, 0.0125, 0.01, 0.005, 0.0025, 0.001,
     ];
-    let segments = [6, 8, 10, 12, 16, 20, 25, 32, 40, 48];
+    let segments = [6, 8, 10, 12, 14, 16, 18, 20, 24, 25, 28, 32, 40, 48];
     println!("| EPS | method | N | k | worst tip error at t = 0.1 … 1 | µs of CPU, whole run |");
     println!("|---|---|---|---|---|---|");
     for &eps in &tolerances {

@@ -27,6 +27,8 @@ use nalgebra::Vector2;
 /// Substep bounds: k_sub ≤ C_F h / sqrt(F_max) (measured stable up to C_F ≈ 0.6 at N = 100)
 /// and k_sub |φ̇|_max ≤ C_ω, at the default step and above; a finer step tightens both in
 /// proportion ([`Descriptor::refinement`]), so that it refines the whip as much as the rest.
+/// Past twice the tolerance step C_ω alone loosens with the step, at most tenfold
+/// ([`Descriptor::rotation_scale`]); C_F, which keeps RK4 stable, never does.
 const SUBSTEP_COURANT: f64 = 0.4;
 const SUBSTEP_ROTATION: f64 = 0.02;
 /// A state needing more substeps than this per step is treated as blown up.
@@ -83,6 +85,8 @@ pub struct Chain {
     k: f64,
     /// What the substep bounds are multiplied by ([`Descriptor::refinement`]).
     refinement: f64,
+    /// What the rotation bound alone is multiplied by ([`Descriptor::rotation_scale`]).
+    rotation_scale: f64,
     steps: u64,
     phi: Vec<f64>,
     omega: Vec<f64>,
@@ -113,6 +117,7 @@ impl Chain {
             descriptor: &DESCRIPTOR,
             k: dt,
             refinement: DESCRIPTOR.refinement(n, dt),
+            rotation_scale: DESCRIPTOR.rotation_scale(n, dt),
             steps: 0,
             phi,
             omega,
@@ -148,6 +153,7 @@ impl Chain {
         let mut chain = Self::new(scene, segments, dt)?;
         chain.descriptor = descriptor;
         chain.refinement = descriptor.refinement(segments, dt);
+        chain.rotation_scale = descriptor.rotation_scale(segments, dt);
         let n = segments as f64;
         let edge = |i: usize| 1.0 - (1.0 - i as f64 / n).powf(exponent);
         let length: Vec<f64> = (0..segments).map(|i| edge(i + 1) - edge(i)).collect();
@@ -216,7 +222,7 @@ impl Chain {
                 self.k * fastest / (SUBSTEP_COURANT * self.refinement)
             }
         };
-        let spin = self.k * rate / (SUBSTEP_ROTATION * self.refinement);
+        let spin = self.k * rate / (SUBSTEP_ROTATION * self.rotation_scale);
         let needed = wave.max(spin).ceil();
         if needed.is_finite() {
             (needed as u64).clamp(1, MAX_SUBSTEPS)

@@ -10,6 +10,12 @@ use crate::model::{Energy, Scene, SupportNow};
 /// runs; a long swing's whips reach 3, where the rods take substeps).
 pub const TENSION_MAX: f64 = 1.5;
 
+/// How far past the tolerance step a rotation bound may loosen
+/// ([`Descriptor::rotation_scale`]): tenfold, to half a radian a step for `rattle` and the
+/// midpoint rule, a fifth of one for an RK4 substep of the chain. Newton converges in a few
+/// solves at half a radian; RK4's error in a fifth of a radian's turn is below 1e-5 of it.
+pub const LOOSEST_ROTATION: f64 = 10.0;
+
 /// What [`Descriptor::tolerance_dt`] divides into whole steps: half the interval of the default
 /// 60 frames per time unit, so that each frame falls on an even step.
 pub const TOLERANCE_STEP_GRID: f64 = 1.0 / 120.0;
@@ -392,6 +398,20 @@ impl Descriptor {
         (dt / self.default_dt(segments)).min(1.0)
     }
 
+    /// What a method's bound on a rod's rotation per (sub)step is multiplied by: the
+    /// [`refinement`](Self::refinement) up to twice the step `--tolerance` runs at, and past
+    /// it k / (2 k_tolerance), at most [`LOOSEST_ROTATION`]. A step asked for that coarse is
+    /// then taken as asked where the rods turn slowly (from 30° at N = 12 and k = 0.1, a pair
+    /// of 0.05 for each step, where the fixed bound split each into four to eight), and still
+    /// split where the free end whips. What keeps an explicit method stable, its Courant
+    /// bound, stays as tuned. Below twice the tolerance step nothing changes, so no run that
+    /// `--tolerance` plans or pilots, nor any default run, nor the live estimate's shadow of
+    /// one (N/2 rods at 2k, and k_tolerance never grows with N), is touched.
+    pub fn rotation_scale(&self, segments: usize, dt: f64) -> f64 {
+        let loosening = dt / (2.0 * self.tolerance_dt(segments));
+        self.refinement(segments, dt) * loosening.clamp(1.0, LOOSEST_ROTATION)
+    }
+
     /// The Courant number C = k N sqrt(F_max) that a step `dt` at `segments` amounts to.
     pub fn courant_of(segments: f64, dt: f64) -> f64 {
         dt * segments * TENSION_MAX.sqrt()
@@ -436,6 +456,38 @@ mod tests {
         // The chain at N = 491: the limit 6.65e-4, the step 1/1560.
         let chain = MethodKind::Chain.descriptor();
         assert!((chain.tolerance_dt(491) - 1.0 / 1560.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_rotation_bound_loosens_only_past_twice_the_tolerance_step_so_no_planned_run_or_shadow_moves()
+     {
+        for method in MethodKind::ALL {
+            let d = method.descriptor();
+            let mut before = f64::INFINITY;
+            for n in d.min_segments.max(4)..=2_000 {
+                let (k, default) = (d.tolerance_dt(n), d.default_dt(n));
+                // k_tolerance never grows with N, so a shadow (N/2 rods, 2k) stays below
+                // twice its own tolerance step whenever its run is at or below the run's.
+                assert!(k <= before, "{method} N = {n}: {k} above {before}");
+                before = k;
+                for dt in [default, k, 2.0 * k] {
+                    assert_eq!(d.rotation_scale(n, dt), d.refinement(n, dt), "{method} {n}");
+                    let half = n / 2;
+                    if half >= d.min_segments && dt <= k {
+                        let shadow = 2.0 * dt;
+                        assert_eq!(
+                            d.rotation_scale(half, shadow),
+                            d.refinement(half, shadow),
+                            "{method} N = {n}'s shadow at k = {dt}"
+                        );
+                    }
+                }
+                // Past it, in proportion to the step, and at most tenfold.
+                let thrice = d.rotation_scale(n, 6.0 * k) / d.refinement(n, 6.0 * k);
+                assert!((thrice - 3.0).abs() < 1e-12, "{method} N = {n}: {thrice}");
+                assert_eq!(d.rotation_scale(n, 1e3 * k), LOOSEST_ROTATION);
+            }
+        }
     }
 
     #[test]

@@ -42,8 +42,9 @@
 //! back, and are counted ([`StepStatistics`]). docs/physics.md says what this does.
 //!
 //! **Steps that follow the motion.** A step of the driver (k_max, `--dt`) is split into an
-//! even number of equal steps no longer than [`ROTATION`] · min(1, k_max/k_default) / max|θ̇|,
-//! a smooth function of the state, the rest of the driver's step shared equally among the
+//! even number of equal steps no longer than [`ROTATION`] · s / max|θ̇|, a smooth function
+//! of the state (s = min(1, k_max/k_default), and past twice the tolerance step
+//! k_max/(2 k_tolerance), at most tenfold: [`Descriptor::rotation_scale`]), the rest of the driver's step shared equally among the
 //! steps it still needs, so that the last lands exactly on the driver's time; in the calm a
 //! driver step is one pair. A Newton that fails retakes its step at half the length
 //! (counted); past [`MIN_STEP_FRACTION`] of k_max the run has diverged.
@@ -60,8 +61,9 @@ use nalgebra::{Matrix2, Vector2};
 /// C of the estimate k = C h / sqrt(F_max) past which steps are split to follow the state;
 /// the method never blows up past it, it pays for the extra steps.
 const COURANT: f64 = 0.4;
-/// Largest rotation of a rod per step, k · max|θ̇|, at the default step and above; a finer
-/// `--dt` tightens it in proportion, so that a finer step refines the whip too.
+/// Largest rotation of a rod per step, k · max|θ̇|, from the default step to twice the
+/// tolerance step; a finer `--dt` tightens it in proportion, so that a finer step refines the
+/// whip too, and a coarser one loosens it ([`Descriptor::rotation_scale`]).
 pub const ROTATION: f64 = 0.05;
 
 /// Newton stops when what its last correction leaves moves no angle by more than this
@@ -91,7 +93,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     min_segments: 2,
     courant: COURANT,
     limit_meaning: "steps shrink past about k = C h / sqrt(F_max)",
-    past_limit: "its own steps shrink until the fastest rod turns at most 0.05 rad in one, so it stays stable at any --dt: the limit only sets the default step, up to N = 100",
+    past_limit: "its own steps shrink until the fastest rod turns at most 0.05 rad in one (up to 0.5 rad for a --dt over twice the step --tolerance takes), so it stays stable at any --dt: the limit only sets the default step, up to N = 100",
     keeps_energy: true,
     steady_cost: true,
     blow_up: &[],
@@ -314,7 +316,7 @@ impl Midpoint {
         let mut midpoint = Self {
             h: 1.0 / n as f64,
             k: dt,
-            rotation: ROTATION * DESCRIPTOR.refinement(n, dt),
+            rotation: ROTATION * DESCRIPTOR.rotation_scale(n, dt),
             steps: 0,
             centre: centres.iter().map(|p| p.coords).collect(),
             tangent: angle
