@@ -11,7 +11,7 @@ use rope::{RunConfig, simulate};
 
 const THIRTY: Scene = Scene::Release { angle_deg: 30.0 };
 const HORIZONTAL: Scene = Scene::Release { angle_deg: 0.0 };
-/// Far past either method's tolerance step at these N (1e-2 at N = 8 and 12).
+/// Far past either method's tolerance step at these N (1/100 or less at N = 8 and 12).
 const COARSE: f64 = 0.1;
 
 fn coarse_run(method: MethodKind, scene: Scene, segments: usize, duration: f64) -> rope::Simulated {

@@ -44,9 +44,9 @@
 //! **Steps that follow the motion.** A step of the driver (k_max, `--dt`) is split into an
 //! even number of equal steps no longer than [`ROTATION`] · s / max|θ̇|, a smooth function
 //! of the state (s = min(1, k_max/k_default), and past twice the tolerance step
-//! k_max/(2 k_tolerance), at most tenfold: [`Descriptor::rotation_scale`]), the rest of the driver's step shared equally among the
-//! steps it still needs, so that the last lands exactly on the driver's time; in the calm a
-//! driver step is one pair. A Newton that fails retakes its step at half the length
+//! k_max/(2 k_tolerance), at most tenfold: [`Descriptor::rotation_scale`]), the rest of the
+//! driver's step shared equally among the steps it still needs, so that the last lands
+//! exactly on the driver's time; in the calm a driver step is one pair. A Newton that fails retakes its step at half the length
 //! (counted); past [`MIN_STEP_FRACTION`] of k_max the run has diverged.
 
 use super::constraint_matrix::{ConstraintMatrix, inverse};
