@@ -3,9 +3,9 @@
 //! t = 0.1, 0.2, …, 1.0 that issue 63 named (rattle at N = 12, k = 0.025; midpoint at N = 25,
 //! k = 0.05), and the cheapest that `cargo run --release --example small_run_search` finds
 //! (midpoint at N = 8 and N = 14, k = 0.1: a step that coarse is taken as one pair of 0.05
-//! while the rods turn slowly, `Descriptor::rotation_scale`). Each is timed three ways: `rope::simulate` as a
-//! program embedding rope calls it (without the live estimate), the method built and stepped
-//! alone, and its steps alone (the floor).
+//! while the rods turn slowly, `Descriptor::rotation_scale`). Each is timed three ways:
+//! `rope::simulate` as a program embedding rope calls it (without the live estimate), the
+//! method built and stepped alone, and its steps alone (the floor).
 //!
 //! `cargo bench --bench small_run`; the accuracy is printed before the timings, and the table
 //! in `docs/measurements.md` comes from both. Beside them, what `--tolerance` spends choosing

@@ -20,7 +20,8 @@ fn main() -> anyhow::Result<()> {
         .into_iter()
         .find(|m| m.name() == name)
         .with_context(|| {
-            format!("METHOD {name:?}: one of seed, chain, graded, rattle, midpoint")
+            let names: Vec<&str> = MethodKind::ALL.iter().map(|m| m.name()).collect();
+            format!("METHOD {name:?}: one of {}", names.join(", "))
         })?;
     let segments = args::number(given.next(), 1000.0)?;
     let steps = args::number(given.next(), 300.0)?;

@@ -46,8 +46,9 @@
 //! of the state (s = min(1, k_max/k_default), and past twice the tolerance step
 //! k_max/(2 k_tolerance), at most tenfold: [`Descriptor::rotation_scale`]), the rest of the
 //! driver's step shared equally among the steps it still needs, so that the last lands
-//! exactly on the driver's time; in the calm a driver step is one pair. A Newton that fails retakes its step at half the length
-//! (counted); past [`MIN_STEP_FRACTION`] of k_max the run has diverged.
+//! exactly on the driver's time; in the calm a driver step is one pair. A Newton that fails
+//! retakes its step at half the length (counted); past [`MIN_STEP_FRACTION`] of k_max the run
+//! has diverged.
 
 use super::constraint_matrix::{ConstraintMatrix, inverse};
 use super::joint_forces::ForceSolver;
