@@ -9,20 +9,11 @@
 #[path = "common/args.rs"]
 mod args;
 
-use anyhow::Context;
-use rope::methods::MethodKind;
 use rope::model::Scene;
 
 fn main() -> anyhow::Result<()> {
     let mut given = std::env::args().skip(1);
-    let name = given.next().unwrap_or_else(|| "midpoint".into());
-    let method = MethodKind::ALL
-        .into_iter()
-        .find(|m| m.name() == name)
-        .with_context(|| {
-            let names: Vec<&str> = MethodKind::ALL.iter().map(|m| m.name()).collect();
-            format!("METHOD {name:?}: one of {}", names.join(", "))
-        })?;
+    let method = args::method(given.next())?;
     let segments = args::number(given.next(), 1000.0)?;
     let steps = args::number(given.next(), 300.0)?;
     anyhow::ensure!(

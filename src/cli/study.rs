@@ -312,8 +312,7 @@ impl StudyArgs {
             .methods
             .iter()
             .filter_map(|m| {
-                let dt = dts.first().copied().unwrap_or(1e-3);
-                let err = m.build(&scene, m.descriptor().min_segments, dt).err()?;
+                let err = m.starts_from(&scene).err()?;
                 Some(format!("{m}: {err}"))
             })
             .collect();

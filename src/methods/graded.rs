@@ -11,6 +11,7 @@
 
 use super::chain::{self, Chain};
 use super::method::Descriptor;
+use crate::error::ConfigError;
 use crate::model::Scene;
 
 /// The exponent of the grading: s_i = 1 − (1 − i/N)^GRADING.
@@ -61,6 +62,11 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             dt,
             GRADING,
         )?))
+    },
+    // Its rods are graded for a string released from rest, every rod at one angle.
+    starts_from: |scene| match scene {
+        Scene::Release { .. } => Ok(()),
+        _ => Err(ConfigError::GradedScene(scene.name())),
     },
     plannable: |scene, duration| {
         let from = match duration <= SPIN_FREE_UNTIL {

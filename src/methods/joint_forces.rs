@@ -261,6 +261,7 @@ impl ForceSolver {
         out.angular_velocity.extend_from_slice(rate);
         out.angular_acceleration.resize(rate.len(), 0.0);
         self.accelerations(angle, rate, &mut out.angular_acceleration);
+        out.tangent.clone_from(&self.tangent);
         self.tension(&mut out.tension);
     }
 

@@ -4,6 +4,7 @@
 
 use crate::error::{ConfigError, Diverged};
 use crate::model::{Energy, Scene, SupportNow};
+use nalgebra::Vector2;
 
 /// The tension the stability limits are written for, in m g: about that of a swing from
 /// rest in its first time units (the report saw the support tension below 5/4 in its short
@@ -26,6 +27,11 @@ pub const TOLERANCE_STEP_GRID: f64 = 1.0 / 120.0;
 pub struct Observation {
     /// Segment angles φ_i below the horizontal.
     pub angle: Vec<f64>,
+    /// Their unit tangents (cos φ_i, sin φ_i), bit for bit [`geometry::tangent`] of each,
+    /// where the observer worked them out (for the joint forces); empty where it did not.
+    ///
+    /// [`geometry::tangent`]: crate::model::geometry::tangent
+    pub tangent: Vec<Vector2<f64>>,
     /// φ̇_i.
     pub angular_velocity: Vec<f64>,
     /// φ̈_i.
@@ -298,6 +304,11 @@ pub struct Descriptor {
     pub colours: ([u8; 3], [u8; 3]),
     /// Builds the method at rest in a scene, validating what it needs.
     pub build: Builder,
+    /// What the method refuses of a valid scene whatever N and k: a scene or angle it cannot
+    /// start from (`seed` from the horizontal, the graded rods but from a release). Its
+    /// builder refuses the same; a run is checked by it before anything is built
+    /// ([`MethodKind::starts_from`](super::MethodKind::starts_from)).
+    pub starts_from: fn(&Scene) -> Result<(), ConfigError>,
     /// Whether `--tolerance` may choose the method for a scene it can start from, for a run
     /// to the given duration: where its cost is what [`Descriptor::ns_per_segment_step`]
     /// predicts (every scene but for the graded rods, whose end rods spin on near the

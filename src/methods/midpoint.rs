@@ -131,6 +131,8 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     order_in_h: 2,
     colours: ([200, 170, 240], [90, 40, 160]),
     build: |scene, segments, dt| Ok(Box::new(Midpoint::new(scene, segments, dt)?)),
+    // It starts from any valid scene.
+    starts_from: |_| Ok(()),
     plannable: |_, _| true,
 };
 

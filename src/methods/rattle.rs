@@ -92,6 +92,8 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     order_in_h: 2,
     colours: ([140, 220, 140], [10, 110, 40]),
     build: |scene, segments, dt| Ok(Box::new(Rattle::new(scene, segments, dt)?)),
+    // It starts from any valid scene.
+    starts_from: |_| Ok(()),
     plannable: |_, _| true,
 };
 

@@ -65,6 +65,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     order_in_h: 1,
     colours: ([250, 170, 60], [150, 30, 0]),
     build: |scene, segments, dt| Ok(Box::new(Seed::new(scene, segments, dt)?)),
+    starts_from,
     plannable: |_, _| true,
 };
 
@@ -98,6 +99,19 @@ pub struct Seed {
     sweep_d: Vec<f64>,
 }
 
+/// The scenes the report's scheme cannot start from: the horizontal (its support condition
+/// divides by the first rod's angle), a fold and a shaken support (it has neither).
+fn starts_from(scene: &Scene) -> Result<(), ConfigError> {
+    if scene.support_angle() == 0.0 {
+        return Err(ConfigError::SeedFromHorizontal);
+    }
+    match scene {
+        Scene::Fold { .. } => Err(ConfigError::SeedFold),
+        Scene::Shake { .. } => Err(ConfigError::SeedShake),
+        Scene::Release { .. } | Scene::Mode { .. } => Ok(()),
+    }
+}
+
 impl Seed {
     /// The scheme at rest in `scene`, with the derived support sign.
     pub fn new(scene: &Scene, segments: usize, dt: f64) -> Result<Self, ConfigError> {
@@ -114,15 +128,7 @@ impl Seed {
         scene.validate()?;
         method::validate_segments(&DESCRIPTOR, segments)?;
         method::validate_dt(dt)?;
-        if scene.support_angle() == 0.0 {
-            return Err(ConfigError::SeedFromHorizontal);
-        }
-        if let Scene::Fold { .. } = scene {
-            return Err(ConfigError::SeedFold);
-        }
-        if let Scene::Shake { .. } = scene {
-            return Err(ConfigError::SeedShake);
-        }
+        starts_from(scene)?;
         let phi = scene.initial_angles(segments);
         let mut seed = Self {
             h: 1.0 / segments as f64,
@@ -291,6 +297,7 @@ impl Method for Seed {
         self.solve_tension();
         let inv_k = 1.0 / self.k;
         out.angle.clone_from(&self.phi);
+        out.tangent.clear();
         out.angular_velocity.clear();
         out.angular_velocity.extend(
             self.phi

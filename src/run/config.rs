@@ -147,9 +147,8 @@ impl RunConfig {
             error_estimate,
         );
         self.check_cost(&cost, dt)?;
-        // Whether the method can start from the scene does not depend on N: building it at
-        // its fewest segments says so without allocating the run.
-        method.build(&self.scene, d.min_segments, dt)?;
+        // Whether the method can start from the scene does not depend on N, nor need it build.
+        method.starts_from(&self.scene)?;
         let limit = method.stability_limit(segments);
         if method.descriptor().refuses_unstable_step && dt > limit && !self.allow_unstable {
             return Err(ConfigError::UnstableTimeStep {

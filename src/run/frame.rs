@@ -154,6 +154,7 @@ pub fn frame(method: &mut dyn Method, obs: &mut Observation, base: EnergyBase) -
     let mut nodes = Vec::with_capacity(obs.angle.len() + 1);
     let motion = geometry::motion_of(
         &obs.angle,
+        Some(&obs.tangent),
         &obs.angular_velocity,
         &obs.angular_acceleration,
         lengths,
