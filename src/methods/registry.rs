@@ -160,8 +160,8 @@ impl MethodKind {
 
     /// Whether the method can start from `scene`, at any N and k: the scene's own validity,
     /// then [`Descriptor::starts_from`]. What building the method would refuse for the scene,
-    /// without building it (a throwaway build at the fewest segments cost a small run's
-    /// validation 13 000 instructions, 4 % of the run: `examples/run_alone`).
+    /// without building it (validating the midpoint at N = 8 by a throwaway build at its
+    /// fewest segments took 15 000 instructions, 4 % of the run: `examples/run_alone`).
     pub fn starts_from(self, scene: &Scene) -> Result<(), ConfigError> {
         scene.validate()?;
         (self.descriptor().starts_from)(scene)
