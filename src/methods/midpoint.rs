@@ -124,10 +124,10 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     tension_first_at: 0.5,
     discretization: "rods",
     // The state (centre, angle, tangent, velocity, rate: 64), Newton's unknowns and guesses (Δθ, μ,
-    // two past μ/k², two past torques: 72), its per-rod and per-joint blocks (slope, F, U, gap, y,
-    // pivot, gain: 176), A's factorisation for the projection (112) and its output (24), the
-    // observer's joint-force solve (96).
-    bytes_per_segment: 64 + 72 + 176 + 112 + 24 + 96,
+    // two past μ/k², two past torques: 72), its per-rod and per-joint blocks (slope, end normal,
+    // chord, F, U, gap, y, pivot, gain: 208), A's factorisation for the projection (112) and its
+    // output (24), the observer's joint-force solve (96).
+    bytes_per_segment: 64 + 72 + 208 + 112 + 24 + 96,
     order_in_h: 2,
     colours: ([200, 170, 240], [90, 40, 160]),
     build: |scene, segments, dt| Ok(Box::new(Midpoint::new(scene, segments, dt)?)),
@@ -274,6 +274,10 @@ pub struct Midpoint {
     /// gains D'_j⁻¹ U_j (kept from the first iteration of a step: simplified Newton after it).
     slope: Vec<Slope>,
     residual_angle: Vec<f64>,
+    /// Per rod, from a refresh's first pass: a_i = n(θ_i + Δθ_i) and the chord Δθ_i b_i at
+    /// the turn the Jacobian is taken at (see [`Midpoint::forward`]).
+    end_normal: Vec<Vector2<f64>>,
+    turn_chord: Vec<Vector2<f64>>,
     upper: Vec<Matrix2<f64>>,
     gap: Vec<Vector2<f64>>,
     work: Vec<Vector2<f64>>,
@@ -340,6 +344,8 @@ impl Midpoint {
             slope: vec![Slope::default(); n],
             upper: vec![Matrix2::zeros(); n],
             residual_angle: vec![0.0; n],
+            end_normal: vec![Vector2::zeros(); n],
+            turn_chord: vec![Vector2::zeros(); n],
             gap: vec![Vector2::zeros(); n],
             work: vec![Vector2::zeros(); n],
             pivot: vec![Matrix2::zeros(); n],
@@ -422,8 +428,8 @@ impl Midpoint {
 
     /// Newton's forward pass: every residual at the current (Δθ, μ), and the elimination of
     /// the Schur complement S δμ = r (r_j = h R_j − (h²/2) Σ a_i F_i / d_i). With `refresh`
-    /// the Jacobian is evaluated and factorised here; without, the last one serves. Leaves
-    /// y_j in `work`.
+    /// the Jacobian is evaluated (each rod's part in a pass of its own, before the
+    /// elimination) and factorised here; without, the last one serves. Leaves y_j in `work`.
     fn forward(&mut self, dt: f64, refresh: bool) {
         let (h, half) = (self.h, 0.5 * self.h);
         let spin_gain = 6.0 / (h * h); // (12/h³)(h/2)
@@ -446,6 +452,8 @@ impl Midpoint {
             slope,
             work,
             residual_angle,
+            end_normal,
+            turn_chord,
             ..
         } = self;
         let (multiplier, tangent, turn) = (&multiplier[..n], &tangent[..n], &turn[..n]);
@@ -453,6 +461,24 @@ impl Midpoint {
         let (upper, gain, pivot) = (&mut upper[..n], &mut gain[..n], &mut pivot[..n]);
         let (slope, work) = (&mut slope[..n], &mut work[..n]);
         let residual_angle = &mut residual_angle[..n];
+        let (end_normal, turn_chord) = (&mut end_normal[..n], &mut turn_chord[..n]);
+        if refresh {
+            // Each rod's part of the Jacobian first, in a pass of its own: it does not depend
+            // on the elimination, and its division 1/d_i, kept in the elimination's loop,
+            // waited there on the pivot's before it (in the elimination, the only division).
+            for j in 0..n {
+                let m = multiplier[j] + multiplier_after(multiplier, j);
+                let rod = Turn::of(tangent[j], turn[j]);
+                let inv_d = 1.0 / (1.0 + spin_gain * rod.db.dot(&m));
+                slope[j] = Slope {
+                    a_over_d: inv_d * rod.a,
+                    b: rod.b,
+                    inv_d,
+                };
+                end_normal[j] = rod.a;
+                turn_chord[j] = rod.chord;
+            }
+        }
         let mut before_increment = Vector2::zeros(); // rod −1: the support does not move
         let mut before_chord = Vector2::zeros();
         let mut before_af = Vector2::zeros(); // a_{j−1} F_{j−1} / d_{j−1}
@@ -461,9 +487,8 @@ impl Midpoint {
             let after = multiplier_after(multiplier, j);
             let m = multiplier[j] + after;
             let (b, chord) = if refresh {
-                let rod = Turn::of(tangent[j], turn[j]);
-                let inv_d = 1.0 / (1.0 + spin_gain * rod.db.dot(&m));
-                let w = (3.0 * inv_d) * rod.a * rod.b.transpose();
+                let Slope { b, inv_d, .. } = slope[j];
+                let w = (3.0 * inv_d) * end_normal[j] * b.transpose();
                 // S_jj = 2I + W_{j−1} + W_j = 3I + U_{j−1} + W_j.
                 let mut diag = if j == 0 {
                     eye + w
@@ -481,12 +506,7 @@ impl Midpoint {
                     Matrix2::zeros()
                 };
                 pivot[j] = inverted;
-                slope[j] = Slope {
-                    a_over_d: inv_d * rod.a,
-                    b: rod.b,
-                    inv_d,
-                };
-                (rod.b, rod.chord)
+                (b, turn_chord[j])
             } else {
                 Turn::lean(tangent[j], turn[j])
             };
@@ -516,16 +536,18 @@ impl Midpoint {
         let rods = self.slope[..n].iter().zip(&self.residual_angle[..n]);
         let unknowns = self.multiplier[..n].iter_mut().zip(&mut self.turn[..n]);
         let mut after = Vector2::zeros(); // δμ_{j+1}
-        let mut largest: f64 = 0.0;
+        let (mut largest, mut largest_multiplier): (f64, f64) = (0.0, 0.0);
         for (((y, gain), (slope, f)), (multiplier, turn)) in rows.zip(rods).zip(unknowns).rev() {
             let delta = y - gain * after;
             let correction = -(f + spin_gain * slope.b.dot(&(delta + after))) * slope.inv_d;
             *multiplier += delta;
             *turn += correction;
-            largest = largest.max(correction.abs()).max(delta.amax() / h);
+            largest = largest.max(correction.abs());
+            largest_multiplier = largest_multiplier.max(delta.amax());
             after = delta;
         }
-        largest
+        // Divided once: max(a, b)/h is max(a/h, b/h) to the bit.
+        largest.max(largest_multiplier / h)
     }
 
     /// One step of length `dt` from the current state; false if Newton did not converge (the
