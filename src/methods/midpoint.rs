@@ -464,8 +464,9 @@ impl Midpoint {
         let (end_normal, turn_chord) = (&mut end_normal[..n], &mut turn_chord[..n]);
         if refresh {
             // Each rod's part of the Jacobian first, in a pass of its own: it does not depend
-            // on the elimination, and its division 1/d_i, kept in the elimination's loop,
-            // waited there on the pivot's before it (in the elimination, the only division).
+            // on the elimination, yet inside the elimination's loop its division 1/d_i queued
+            // with the pivot's, on which the next rod waits (a seventh of a step's samples fell
+            // just after the two: docs/measurements.md). The elimination keeps the pivot's.
             for j in 0..n {
                 let m = multiplier[j] + multiplier_after(multiplier, j);
                 let rod = Turn::of(tangent[j], turn[j]);

@@ -100,7 +100,8 @@ pub struct Seed {
 }
 
 /// The scenes the report's scheme cannot start from: the horizontal (its support condition
-/// divides by the first rod's angle), a fold and a shaken support (it has neither).
+/// (11) divides by the support tension sin φ₀, zero there), a fold (its free arm falls with
+/// no tension, and the scheme diverges) and a shaken support (no term of it moves the support).
 fn starts_from(scene: &Scene) -> Result<(), ConfigError> {
     if scene.support_angle() == 0.0 {
         return Err(ConfigError::SeedFromHorizontal);
