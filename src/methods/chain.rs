@@ -106,6 +106,16 @@ pub struct Chain {
     ledger: SupportLedger,
 }
 
+/// Rods graded along the string start from a release only: a release is straight, so every
+/// rod starts at its angle whatever its length. [`Chain::graded`] refuses other scenes
+/// whatever descriptor it answers as, and the graded method's `starts_from` is this.
+pub(crate) fn graded_starts_from(scene: &Scene) -> Result<(), ConfigError> {
+    match scene {
+        Scene::Release { .. } => Ok(()),
+        _ => Err(ConfigError::GradedScene(scene.name())),
+    }
+}
+
 impl Chain {
     /// The chain at rest in `scene`.
     pub fn new(scene: &Scene, segments: usize, dt: f64) -> Result<Self, ConfigError> {
@@ -149,7 +159,7 @@ impl Chain {
         dt: f64,
         exponent: f64,
     ) -> Result<Self, ConfigError> {
-        (descriptor.starts_from)(scene)?;
+        graded_starts_from(scene)?;
         let mut chain = Self::new(scene, segments, dt)?;
         chain.descriptor = descriptor;
         chain.refinement = descriptor.refinement(segments, dt);

@@ -11,7 +11,6 @@
 
 use super::chain::{self, Chain};
 use super::method::Descriptor;
-use crate::error::ConfigError;
 use crate::model::Scene;
 
 /// The exponent of the grading: s_i = 1 − (1 − i/N)^GRADING.
@@ -63,11 +62,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             GRADING,
         )?))
     },
-    // Its rods are graded for a string released from rest, every rod at one angle.
-    starts_from: |scene| match scene {
-        Scene::Release { .. } => Ok(()),
-        _ => Err(ConfigError::GradedScene(scene.name())),
-    },
+    starts_from: chain::graded_starts_from,
     plannable: |scene, duration| {
         let from = match duration <= SPIN_FREE_UNTIL {
             true => SPIN_FREE_FROM,
