@@ -93,7 +93,10 @@ fn random_steps(count: usize) -> Vec<f64> {
 #[test]
 fn energy_is_kept_exactly_under_a_random_sequence_of_steps() {
     // The scheme's own steps, no projection between them: ΔT = −ΔV whatever each step's
-    // length, through the first whip of the horizontal release (t ≈ 1.2–1.5).
+    // length, through the first whip of the horizontal release (t ≈ 1.2–1.5), to Newton's
+    // tolerance (1e-11 rad in the turns). It strays by about 6e-12 over these 28 000 steps
+    // (their last solve keeps the Jacobian); one solve a step, the scheme kept only by the
+    // projection's rescale, strayed by 1e-9 to 2.5e-8, and a Jacobian kept from 1e-2 by 9e-11.
     for scene in [HORIZONTAL, THIRTY] {
         let mut rope = Midpoint::new(&scene, 50, 1e-3).unwrap();
         let start = rope.energy().total();
@@ -107,7 +110,7 @@ fn energy_is_kept_exactly_under_a_random_sequence_of_steps() {
         eprintln!("{scene}: |E − E₀| at most {worst:.3e} to t = {time:.2}");
         assert!(time > 1.6, "the run reached t = {time}");
         assert!(
-            worst < 1e-13,
+            worst < 1e-11,
             "{scene}: |E − E₀| reached {worst:.3e} by t = {time:.2}"
         );
     }

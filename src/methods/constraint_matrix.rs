@@ -13,14 +13,15 @@
 
 use nalgebra::{Matrix2, Vector2};
 
-/// The inverse of a 2×2 matrix: its adjugate times one reciprocal of the determinant, where
-/// nalgebra's `try_inverse` divides four times (docs/measurements.md); NaN where the matrix is
-/// singular or not finite, which the callers' checks of finiteness then show.
+/// A 2×2 matrix's adjugate and the reciprocal of its determinant: its inverse is their
+/// product, with one division where nalgebra's `try_inverse` makes four (docs/measurements.md).
+/// Apart, an elimination can work with the adjugate while the division is under way. NaN
+/// where the matrix is singular or not finite, which the callers' checks of finiteness show.
 #[inline(always)]
-pub(crate) fn inverse(m: Matrix2<f64>) -> Matrix2<f64> {
+pub(crate) fn adjugate(m: Matrix2<f64>) -> (Matrix2<f64>, f64) {
     let det = m.m11 * m.m22 - m.m12 * m.m21;
     let inv = if det == 0.0 { f64::NAN } else { 1.0 / det };
-    Matrix2::new(m.m22 * inv, -m.m12 * inv, -m.m21 * inv, m.m11 * inv)
+    (Matrix2::new(m.m22, -m.m12, -m.m21, m.m11), inv)
 }
 
 /// h A at one configuration, factorised: D'_j = D_j − U_{j−1} D'_{j−1}⁻¹ U_{j−1}.
@@ -56,9 +57,9 @@ impl ConstraintMatrix {
         let projector = |v: &Vector2<f64>| 3.0 * v * v.transpose();
         let mut p_prev = projector(&self.normal[0]);
         let mut diag = eye + p_prev;
-        // Over zipped slices, the blocks of the joint before carried along: no bound checked
-        // and no vector's pointer reloaded at each joint.
-        let (mut upper_before, mut gain_before) = (Matrix2::zeros(), Matrix2::zeros());
+        // Over zipped slices, what the next pivot needs of this joint carried along: no bound
+        // checked and no vector's pointer reloaded at each joint.
+        let (mut passed, mut inv_before) = (Matrix2::zeros(), 0.0);
         let blocks = self
             .pivot
             .iter_mut()
@@ -67,18 +68,23 @@ impl ConstraintMatrix {
         for (j, (((pivot, upper), gain), normal)) in blocks.zip(&self.normal).enumerate() {
             if j > 0 {
                 let p = projector(normal);
-                diag = 2.0 * eye + p_prev + p - upper_before * gain_before;
+                // U_{j−1} D'_{j−1}⁻¹ U_{j−1} = U adj(D') U / det(D').
+                diag = 2.0 * eye + p_prev + p - inv_before * passed;
                 p_prev = p;
             }
             *upper = p_prev - eye;
+            // The next pivot waits on this one's division, but not on the products with its
+            // adjugate, which are worked out while the division runs (docs/measurements.md).
             // A non-finite configuration makes NaN here, which the caller detects.
-            *pivot = inverse(diag);
+            let (adjugate, inv) = adjugate(diag);
+            passed = *upper * adjugate * *upper;
+            inv_before = inv;
+            *pivot = inv * adjugate;
             *gain = if j + 1 < n {
                 *pivot * *upper
             } else {
                 Matrix2::zeros()
             };
-            (upper_before, gain_before) = (*upper, *gain);
         }
     }
 
@@ -106,17 +112,69 @@ impl ConstraintMatrix {
 mod tests {
     use super::*;
 
-    /// The one-division inverse is the inverse: its products with the matrix are the
-    /// identity to round-off, as nalgebra's four-division one is; singular, it is NaN.
+    /// The adjugate over the determinant is the inverse: its products with the matrix are
+    /// the identity to round-off, as nalgebra's four-division one is; singular, it is NaN.
     #[test]
     fn inverse_by_one_division() {
         let m = Matrix2::new(2.0, -0.7, 0.3, 1.1);
-        let inv = inverse(m);
+        let (adjugate_of_m, inv_det) = adjugate(m);
+        let inv = inv_det * adjugate_of_m;
         let reference = m.try_inverse().expect("invertible");
         assert!((inv * m - Matrix2::identity()).amax() < 1e-15);
         assert!((m * inv - Matrix2::identity()).amax() < 1e-15);
         assert!((inv - reference).amax() < 1e-15);
         let singular = Matrix2::new(1.0, 2.0, 2.0, 4.0);
-        assert!(inverse(singular).iter().all(|x| x.is_nan()));
+        let (adjugate_of_singular, inv_det) = adjugate(singular);
+        assert!((inv_det * adjugate_of_singular).iter().all(|x| x.is_nan()));
+    }
+
+    /// The factorisation solves h A x = h r: the forward pass and the back-substitution
+    /// x_j = y_j − gain_j x_{j+1} give x, whose product with h A (assembled from its blocks
+    /// as the module's note gives them) is h r to round-off.
+    #[test]
+    fn the_factorisation_solves_the_joints_system() {
+        let angles = [0.3, -1.2, 2.0, 0.1, 0.7, -0.4];
+        let tangent: Vec<Vector2<f64>> = angles
+            .iter()
+            .map(|&a: &f64| Vector2::new(a.cos(), a.sin()))
+            .collect();
+        let n = tangent.len();
+        let h = 1.0 / n as f64;
+        let mut matrix = ConstraintMatrix::new(n);
+        matrix.factorise(&tangent);
+        let r: Vec<Vector2<f64>> = (0..n)
+            .map(|j| Vector2::new(j as f64 - 2.0, 1.0 + 0.5 * j as f64))
+            .collect();
+        let mut x = r.clone();
+        matrix.forward(h, &mut x);
+        for j in (0..n.saturating_sub(1)).rev() {
+            let after = x[j + 1];
+            x[j] -= matrix.gain[j] * after;
+        }
+        let eye = Matrix2::identity();
+        let p: Vec<Matrix2<f64>> = matrix
+            .normal
+            .iter()
+            .map(|v| 3.0 * v * v.transpose())
+            .collect();
+        for j in 0..n {
+            let diag = if j == 0 {
+                eye + p[0]
+            } else {
+                2.0 * eye + p[j - 1] + p[j]
+            };
+            let mut row = diag * x[j];
+            if j > 0 {
+                row += (p[j - 1] - eye) * x[j - 1];
+            }
+            if j + 1 < n {
+                row += (p[j] - eye) * x[j + 1];
+            }
+            assert!(
+                (row - h * r[j]).amax() < 1e-12,
+                "joint {j}: {row} against {}",
+                h * r[j]
+            );
+        }
     }
 }
