@@ -18,10 +18,59 @@ use nalgebra::{Matrix2, Vector2};
 /// Apart, an elimination can work with the adjugate while the division is under way. NaN
 /// where the matrix is singular or not finite, which the callers' checks of finiteness show.
 #[inline(always)]
-pub(crate) fn adjugate(m: Matrix2<f64>) -> (Matrix2<f64>, f64) {
+fn adjugate(m: Matrix2<f64>) -> (Matrix2<f64>, f64) {
     let det = m.m11 * m.m22 - m.m12 * m.m21;
     let inv = if det == 0.0 { f64::NAN } else { 1.0 / det };
     (Matrix2::new(m.m22, -m.m12, -m.m21, m.m11), inv)
+}
+
+/// What one joint of a block elimination with the off-diagonal blocks U on both sides passes
+/// to the next pivot, U D'⁻¹ U: kept as U adj(D') U and 1/det(D') apart, so that the next
+/// pivot waits on the division alone, not on the products after it.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Passed {
+    product: Matrix2<f64>,
+    inv_det: f64,
+}
+
+impl Passed {
+    /// Before the first joint: nothing.
+    pub(crate) fn none() -> Self {
+        Self {
+            product: Matrix2::zeros(),
+            inv_det: 0.0,
+        }
+    }
+
+    /// U D'⁻¹ U, which the next pivot block subtracts: D'_{j+1} = D_{j+1} − U D'⁻¹ U.
+    #[inline(always)]
+    pub(crate) fn schur(&self) -> Matrix2<f64> {
+        self.inv_det * self.product
+    }
+}
+
+/// One joint of the elimination: from its pivot block D' and its off-diagonal block U, the
+/// inverted pivot D'⁻¹, the gain D'⁻¹ U for the back-substitution (zero at the `last` joint)
+/// and what passes to the next pivot. A non-finite or singular pivot makes NaN, which the
+/// callers' checks of finiteness show.
+#[inline(always)]
+pub(crate) fn eliminate(
+    diag: Matrix2<f64>,
+    upper: Matrix2<f64>,
+    last: bool,
+) -> (Matrix2<f64>, Matrix2<f64>, Passed) {
+    let (adjugate, inv_det) = adjugate(diag);
+    let passed = Passed {
+        product: upper * adjugate * upper,
+        inv_det,
+    };
+    let pivot = inv_det * adjugate;
+    let gain = if last {
+        Matrix2::zeros()
+    } else {
+        pivot * upper
+    };
+    (pivot, gain, passed)
 }
 
 /// h A at one configuration, factorised: D'_j = D_j − U_{j−1} D'_{j−1}⁻¹ U_{j−1}.
@@ -59,7 +108,7 @@ impl ConstraintMatrix {
         let mut diag = eye + p_prev;
         // Over zipped slices, what the next pivot needs of this joint carried along: no bound
         // checked and no vector's pointer reloaded at each joint.
-        let (mut passed, mut inv_before) = (Matrix2::zeros(), 0.0);
+        let mut passed = Passed::none();
         let blocks = self
             .pivot
             .iter_mut()
@@ -68,23 +117,12 @@ impl ConstraintMatrix {
         for (j, (((pivot, upper), gain), normal)) in blocks.zip(&self.normal).enumerate() {
             if j > 0 {
                 let p = projector(normal);
-                // U_{j−1} D'_{j−1}⁻¹ U_{j−1} = U adj(D') U / det(D').
-                diag = 2.0 * eye + p_prev + p - inv_before * passed;
+                diag = 2.0 * eye + p_prev + p - passed.schur();
                 p_prev = p;
             }
             *upper = p_prev - eye;
-            // The next pivot waits on this one's division, but not on the products with its
-            // adjugate, which are worked out while the division runs (docs/measurements.md).
             // A non-finite configuration makes NaN here, which the caller detects.
-            let (adjugate, inv) = adjugate(diag);
-            passed = *upper * adjugate * *upper;
-            inv_before = inv;
-            *pivot = inv * adjugate;
-            *gain = if j + 1 < n {
-                *pivot * *upper
-            } else {
-                Matrix2::zeros()
-            };
+            (*pivot, *gain, passed) = eliminate(diag, *upper, j + 1 == n);
         }
     }
 

@@ -51,7 +51,7 @@
 //! retakes its step at half the length (counted); past [`MIN_STEP_FRACTION`] of k_max the run
 //! has diverged.
 
-use super::constraint_matrix::{ConstraintMatrix, adjugate};
+use super::constraint_matrix::{ConstraintMatrix, Passed, eliminate};
 use super::joint_forces::ForceSolver;
 use super::method::{self, Descriptor, Method, Observation, StepStatistics};
 use crate::error::{ConfigError, Diverged};
@@ -74,8 +74,8 @@ pub const ROTATION: f64 = 0.05;
 /// at the first iteration, the correction itself. Before, it stopped at a correction of 1e-10
 /// itself, one iteration later: from 30° at N = 1 000 to t = 3 the tip moved by at most
 /// 4.4e-14 at 1 000 frames a unit, with 2.4 solves a step where there had been 3.0; the bare
-/// scheme's energy from the horizontal, over 28 000 random steps, strays by 6.6e-14 where it
-/// strayed by 2.0e-14 (`tests/midpoint_physics.rs`).
+/// scheme's energy from the horizontal, over 28 000 random steps, strayed by 6.6e-14 where it
+/// had strayed by 2.0e-14 (`tests/midpoint_physics.rs`; since [`REFRESH`], 5.9e-12).
 const CORRECTION: f64 = 1e-11;
 /// Newton refreshes its Jacobian until its correction falls below this; after, it keeps it
 /// (simplified Newton). A step's first correction is mostly 1e-5 to 1e-4 (from 30° at
@@ -492,8 +492,7 @@ impl Midpoint {
         let mut before_chord = Vector2::zeros();
         let mut before_af = Vector2::zeros(); // a_{j−1} F_{j−1} / d_{j−1}
         let mut before_y = Vector2::zeros();
-        // At a refresh: U_{j−1} adj(D'_{j−1}) U_{j−1} and 1/det(D'_{j−1}).
-        let (mut passed, mut inv_before) = (Matrix2::zeros(), 0.0);
+        let mut passed = Passed::none(); // at a refresh: U_{j−1} D'_{j−1}⁻¹ U_{j−1}
         for j in 0..n {
             let after = multiplier_after(multiplier, j);
             let m = multiplier[j] + after;
@@ -507,21 +506,10 @@ impl Midpoint {
                     3.0 * eye + upper[j - 1] + w
                 };
                 if j > 0 {
-                    // U_{j−1} D'_{j−1}⁻¹ U_{j−1} = U adj(D') U / det(D').
-                    diag -= inv_before * passed;
+                    diag -= passed.schur();
                 }
-                // The next pivot waits on this one's division, but not on the products with
-                // its adjugate, worked out while the division runs (docs/measurements.md).
-                let (adjugate, inv) = adjugate(diag);
                 upper[j] = w - eye;
-                (passed, inv_before) = (upper[j] * adjugate * upper[j], inv);
-                let inverted = inv * adjugate;
-                gain[j] = if j + 1 < n {
-                    inverted * upper[j]
-                } else {
-                    Matrix2::zeros()
-                };
-                pivot[j] = inverted;
+                (pivot[j], gain[j], passed) = eliminate(diag, upper[j], j + 1 == n);
                 (b, turn_chord[j])
             } else {
                 Turn::lean(tangent[j], turn[j])
