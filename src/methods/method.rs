@@ -424,6 +424,14 @@ impl Descriptor {
         self.refinement(segments, dt) * loosening.clamp(1.0, LOOSEST_ROTATION)
     }
 
+    /// Whether a step `dt` at `segments` is coarse: past twice the step `--tolerance` runs at,
+    /// where [`rotation_scale`](Self::rotation_scale) loosens a method's bounds. No run that
+    /// `--tolerance` plans or pilots, no default run and no live estimate's shadow of one has
+    /// a coarse step.
+    pub fn is_coarse(&self, segments: usize, dt: f64) -> bool {
+        dt > 2.0 * self.tolerance_dt(segments)
+    }
+
     /// The Courant number C = k N sqrt(F_max) that a step `dt` at `segments` amounts to.
     pub fn courant_of(segments: f64, dt: f64) -> f64 {
         dt * segments * TENSION_MAX.sqrt()
@@ -484,6 +492,7 @@ mod tests {
                 before = k;
                 for dt in [default, k, 2.0 * k] {
                     assert_eq!(d.rotation_scale(n, dt), d.refinement(n, dt), "{method} {n}");
+                    assert!(!d.is_coarse(n, dt), "{method} N = {n} at k = {dt}");
                     let half = n / 2;
                     if half >= d.min_segments && dt <= k {
                         let shadow = 2.0 * dt;
@@ -492,9 +501,12 @@ mod tests {
                             d.refinement(half, shadow),
                             "{method} N = {n}'s shadow at k = {dt}"
                         );
+                        assert!(!d.is_coarse(half, shadow), "{method} N = {n}'s shadow");
                     }
                 }
-                // Past it, in proportion to the step, and at most tenfold.
+                // Past it, in proportion to the step, and at most tenfold; such a step is
+                // coarse (the midpoint rule then takes it whole where the rods allow).
+                assert!(d.is_coarse(n, 2.0 * k * (1.0 + 1e-12)), "{method} N = {n}");
                 let thrice = d.rotation_scale(n, 6.0 * k) / d.refinement(n, 6.0 * k);
                 assert!((thrice - 3.0).abs() < 1e-12, "{method} N = {n}: {thrice}");
                 assert_eq!(d.rotation_scale(n, 1e3 * k), LOOSEST_ROTATION);
