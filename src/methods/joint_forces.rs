@@ -112,19 +112,6 @@ impl ForceSolver {
         }
     }
 
-    /// Joint forces for angles `phi` and rates `omega` of equal rods, then the angular
-    /// accelerations. Returns the largest joint force and the largest |φ̇|, which set the
-    /// stable step.
-    pub(crate) fn accelerations(
-        &mut self,
-        phi: &[f64],
-        omega: &[f64],
-        alpha: &mut [f64],
-    ) -> (f64, f64) {
-        self.orient(phi);
-        self.solve(omega, None, alpha)
-    }
-
     /// Joint forces at the orientation set last ([`ForceSolver::orient`] or
     /// [`ForceSolver::orient_turned`]) and rates `omega`, then the angular accelerations, for
     /// rods of lengths `length` (summing to 1, mass equal to length; `None`: N equal rods).
@@ -251,20 +238,32 @@ impl ForceSolver {
         max_force2.sqrt()
     }
 
-    /// Tension on each rod: the mean pull of its two joints along it.
-    /// Fills an observation of rods at `angle` turning at `rate`: the angles, rates, angular
-    /// accelerations and tensions the joint forces give there.
-    pub(crate) fn observe(&mut self, angle: &[f64], rate: &[f64], out: &mut Observation) {
+    /// Fills an observation of rods at `angle` turning at `rate`, whose unit tangents a
+    /// method carries as `tangent` (its angles' sines and cosines to round-off): the angles,
+    /// rates, angular accelerations and tensions the joint forces give there. The solve and
+    /// the frame take the tangents as they are, without a sine and cosine a rod, so that the
+    /// frame's nodes are the method's own.
+    pub(crate) fn observe(
+        &mut self,
+        angle: &[f64],
+        tangent: &[Vector2<f64>],
+        rate: &[f64],
+        out: &mut Observation,
+    ) {
+        self.tangent.copy_from_slice(tangent);
+        // The base no longer stands for these tangents.
+        self.moves = None;
         out.angle.clear();
         out.angle.extend_from_slice(angle);
         out.angular_velocity.clear();
         out.angular_velocity.extend_from_slice(rate);
         out.angular_acceleration.resize(rate.len(), 0.0);
-        self.accelerations(angle, rate, &mut out.angular_acceleration);
+        self.solve(rate, None, &mut out.angular_acceleration);
         out.tangent.clone_from(&self.tangent);
         self.tension(&mut out.tension);
     }
 
+    /// Tension on each rod: the mean pull of its two joints along it.
     pub(crate) fn tension(&self, out: &mut Vec<f64>) {
         let n = self.force.len();
         out.clear();

@@ -27,10 +27,9 @@ pub const TOLERANCE_STEP_GRID: f64 = 1.0 / 120.0;
 pub struct Observation {
     /// Segment angles φ_i below the horizontal.
     pub angle: Vec<f64>,
-    /// Their unit tangents (cos φ_i, sin φ_i), bit for bit [`geometry::tangent`] of each,
-    /// where the observer worked them out (for the joint forces); empty where it did not.
-    ///
-    /// [`geometry::tangent`]: crate::model::geometry::tangent
+    /// Their unit tangents (cos φ_i, sin φ_i) as the method carries them beside its angles
+    /// (equal to the angles' sines and cosines to round-off), where it does; empty where it
+    /// does not, and the frame works them out from the angles.
     pub tangent: Vec<Vector2<f64>>,
     /// φ̇_i.
     pub angular_velocity: Vec<f64>,

@@ -874,7 +874,8 @@ impl Method for Midpoint {
 
     fn observe(&mut self, out: &mut Observation) {
         self.observer.gravity = self.ledger.gravity(self.clock);
-        self.observer.observe(&self.angle, &self.rate, out);
+        self.observer
+            .observe(&self.angle, &self.tangent, &self.rate, out);
     }
 
     fn box_clone(&self) -> Box<dyn Method> {

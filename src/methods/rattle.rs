@@ -507,7 +507,9 @@ impl Method for Rattle {
         for (rate, spin) in self.rate.iter_mut().zip(&self.now.spin) {
             *rate = spin / inertia;
         }
-        self.observer.observe(&self.now.angle, &self.rate, out);
+        let now = &self.now;
+        self.observer
+            .observe(&now.angle, &now.tangent, &self.rate, out);
     }
 
     fn box_clone(&self) -> Box<dyn Method> {

@@ -358,8 +358,8 @@ pub struct Motion {
 /// [`nodes_of`] into `nodes`, and [`tip_velocity_of`], [`momentum_of`] and
 /// [`tip_acceleration_of`], in one pass over the rods: one sine and cosine a rod where the
 /// four took four (a small run's frames spent 6 % of its CPU on them), and none where the
-/// caller has the rods' `tangents`, (cos φ_i, sin φ_i) of `angles` as [`tangent`] gives them
-/// (a frame takes them from its observation's joint-force solve: 3 % of a small run).
+/// caller has the rods' `tangents`, (cos φ_i, sin φ_i) of `angles` (a frame takes those its
+/// method carries, to round-off the angles' own: [`crate::methods::Observation::tangent`]).
 pub fn motion_of(
     angles: &[f64],
     tangents: Option<&[Vector2<f64>]>,
