@@ -251,6 +251,13 @@ impl Scene {
         }
     }
 
+    /// Whether the scene's theory compares the free end's fall ([`Comparison::FALL`], a
+    /// fold's), at any reading: a run then reads the theory at every step, so that what its
+    /// summary quotes does not depend on the frames.
+    pub fn compares_falls(&self) -> bool {
+        matches!(self, Self::Fold { .. })
+    }
+
     /// For a shake, what linear theory predicts of the free end's sideways displacement at
     /// `time`, and the prediction's name: the steady state A sin Ωt / J₀(2Ω). The steady state
     /// is the motion of a steady start; from rest it is the part the shaking drives, beside the
@@ -415,6 +422,38 @@ impl std::fmt::Display for Scene {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_scene_compares_falls_exactly_where_its_theory_has_a_fall() {
+        use super::super::geometry::Point;
+        use nalgebra::Vector2;
+        let reading = Reading {
+            time: 0.3,
+            initial_tip: Point::new(0.02, 0.0),
+            tip: Point::new(0.1, 0.2),
+            tip_velocity: Vector2::new(0.1, 0.5),
+            support_tension: 0.8,
+            momentum: Vector2::new(0.0, 0.2),
+        };
+        let scenes = [
+            Scene::Release { angle_deg: 30.0 },
+            Scene::Fold { gap: 0.02 },
+            Scene::Mode {
+                number: 2,
+                amplitude: 0.05,
+            },
+            Scene::Shake {
+                amplitude: 0.05,
+                frequency: 2.0,
+                start: ShakeStart::Rest,
+            },
+        ];
+        for scene in scenes {
+            let theory = scene.theory(&reading);
+            let has_fall = theory.iter().any(|c| c.quantity == Comparison::FALL);
+            assert_eq!(scene.compares_falls(), has_fall, "{scene}");
+        }
+    }
 
     #[test]
     fn a_fold_starts_at_the_support_s_height_with_its_arms_apart_by_its_gap() {

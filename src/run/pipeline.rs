@@ -7,12 +7,12 @@ use super::estimate::Shadow;
 use super::probe::Probes;
 use super::simulate::{self, Frame, Options, Outcome, Watch};
 use super::sink::FrameSink;
-use super::summary::{Summary, TipSamples};
+use super::summary::{MAX_TIP_SAMPLES, Summary, TipSamples};
 use super::theory_figures::{PullWindow, TheoryFigures};
 use crate::error::ConfigError;
-use crate::model::geometry;
 use crate::model::theory::Reading;
 use crossbeam_channel::{Receiver, RecvTimeoutError};
+use std::collections::VecDeque;
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
@@ -26,6 +26,16 @@ pub(super) const BATCH_FRAMES: usize = 16;
 
 /// How long a partly filled batch waits for more frames before it is handed over.
 const BATCH_WAIT: Duration = Duration::from_millis(50);
+
+/// The most frames a run makes room for at its start (a run of more grows its vectors).
+const FRAMES_RESERVED: f64 = 4096.0;
+
+/// The frames `plan` will make, as room to hold them: every frame of a run of ordinary
+/// length at once, not grown as they come.
+fn frames_expected(plan: &RunPlan) -> usize {
+    let expected = (plan.duration * plan.log_rate).ceil() + 2.0;
+    expected.clamp(0.0, FRAMES_RESERVED) as usize
+}
 
 /// Runs `plan`, handing its frames to `sink`, until the final time, divergence, or `stop`.
 /// The summary says what was computed; if the sink failed, its `recording_error` says why
@@ -109,7 +119,7 @@ pub fn run_in_memory(plan: &RunPlan) -> Result<(Vec<Frame>, Summary), ConfigErro
     let mut method = plan.build()?;
     let mut shadow = plan.shadow()?;
     let started = Instant::now();
-    let mut frames = Vec::new();
+    let mut frames = Vec::with_capacity(frames_expected(plan));
     let simulation = Simulation::of(plan, method.as_mut(), shadow.as_mut());
     let keep = |frame| {
         frames.push(frame);
@@ -205,10 +215,11 @@ pub(super) fn simulate_and_send(
         log_rate: plan.log_rate,
         frame_grid: plan.frame_grid,
     };
-    let initial_tip = geometry::tip(&plan.scene.initial_angles(plan.segments));
     let mut pull = PullWindow::default();
     let cpu = cpu_time::ThreadTime::now();
     let Simulation { method, watch } = simulation;
+    // The method at its start: its tip is the scene's.
+    let initial_tip = method.tip();
     let reading = |frame: &Frame| Reading {
         time: frame.time,
         initial_tip,
@@ -221,11 +232,7 @@ pub(super) fn simulate_and_send(
     // at every step, so that what it quotes does not depend on the frames.
     let base = simulate::EnergyBase::at_start(method);
     let mut observation = crate::methods::Observation::default();
-    let quoted = TheoryFigures::quotes(&plan.scene.theory(&reading(&simulate::frame(
-        method,
-        &mut observation,
-        base,
-    ))));
+    let quoted = plan.scene.compares_falls();
     let mut figures = TheoryFigures::default();
     // What the summary measures of the motion, on its fine grid: never at the frames.
     let mut probes = Probes::new(plan.scene, plan.dt, plan.duration, base);
@@ -236,7 +243,10 @@ pub(super) fn simulate_and_send(
             figures.push(frame.time, &plan.scene.theory(&reading(&frame)));
         }
     };
-    let mut latest = TipSamples::default();
+    let mut latest = TipSamples {
+        latest: VecDeque::with_capacity(frames_expected(plan).min(MAX_TIP_SAMPLES)),
+        ..TipSamples::default()
+    };
     let on_frame = |mut frame: Frame| {
         frame.theory = plan.scene.theory(&reading(&frame));
         latest.push(frame.time, frame.tip());

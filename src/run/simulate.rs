@@ -233,7 +233,11 @@ pub fn run_watched(
         true => EnergyBase::at_start(method),
         false => EnergyBase::of(method),
     };
-    let mut waiting = Vec::new();
+    // The frames before the reference step wait for it: at most one a step.
+    let mut waiting = Vec::with_capacity(match waits && options.log_rate > 0.0 {
+        true => REFERENCE_STEP as usize,
+        false => 0,
+    });
     // Check the energy on the fine grid: cheap against the steps between.
     let check_every = super::trust::steps_between(dt);
     let mut outcome = Outcome {
@@ -244,7 +248,7 @@ pub fn run_watched(
         energy_final: method.energy_less_work(),
         max_abs_deviation: 0.0,
         frames: 0,
-        tip: tip_in_the_room(method.support(), method.angles(), method.lengths()),
+        tip: point_in_the_room(method.support(), method.tip()),
         support_tension: method.support_tension(),
         max_support_tension: (method.support_tension(), method.time()),
         trusted: (method.steps(), method.time()),
@@ -328,8 +332,7 @@ pub fn run_watched(
     outcome.step_statistics = method.step_statistics();
     if outcome.diverged.is_none() {
         outcome.energy_final = method.energy_less_work();
-        method.observe(&mut obs);
-        outcome.tip = tip_in_the_room(method.support(), &obs.angle, method.lengths());
+        outcome.tip = point_in_the_room(method.support(), method.tip());
         outcome.support_tension = method.support_tension();
         outcome.trusted = (outcome.steps, outcome.time);
     } else {

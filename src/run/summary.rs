@@ -24,7 +24,7 @@ pub use super::probe::{FREE_FALL_UNTIL, FreeFall};
 /// the run measured at every step or on the fine grid, whatever the frames.
 #[derive(Clone, Debug, Default)]
 pub struct TipSamples {
-    latest: VecDeque<[f64; 3]>,
+    pub(super) latest: VecDeque<[f64; 3]>,
     /// What the run measured against the scene's theory at every step, where the scene quotes
     /// it at instants (a fold's falls).
     pub theory: TheoryFigures,

@@ -68,11 +68,6 @@ pub struct TheoryFigures {
 }
 
 impl TheoryFigures {
-    /// Whether a scene whose theory compares `comparisons` has figures to quote (a fall).
-    pub fn quotes(comparisons: &[Comparison]) -> bool {
-        comparisons.iter().any(|c| c.quantity == Comparison::FALL)
-    }
-
     /// Takes an instant's comparisons (nothing happens for a scene without a fall).
     pub fn push(&mut self, time: f64, comparisons: &[Comparison]) {
         let Some(fall) = comparisons.iter().find(|c| c.quantity == Comparison::FALL) else {
