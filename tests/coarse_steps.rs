@@ -48,8 +48,7 @@ fn own_steps(summary: &Summary) -> u64 {
 }
 
 #[test]
-fn the_midpoint_takes_a_coarse_step_whole_while_the_rods_turn_slowly_and_holds_the_tip_to_1e_3()
- {
+fn the_midpoint_takes_a_coarse_step_whole_while_the_rods_turn_slowly_and_holds_the_tip_to_1e_3() {
     let run = coarse_run(MethodKind::Midpoint, THIRTY, 8, 1.0);
     // From 30° the fastest rod turns below 3 rad a time unit to t = 1: 0.3 rad in a step,
     // where the bound at the tolerance step (0.05 rad) split each step into four or six, and

@@ -52,8 +52,10 @@ impl ForceSolver {
             offset: vec![Vector2::zeros(); n],
             force: vec![Vector2::zeros(); n],
             tangent: vec![Vector2::zeros(); n],
-            base: vec![Vector2::zeros(); n],
-            base_angle: vec![0.0; n],
+            // Sized at the first `orient`: a method that never orients by angles (its
+            // tangents carried) never needs them.
+            base: Vec::new(),
+            base_angle: Vec::new(),
             moves: None,
             gravity: Vector2::new(0.0, 1.0),
         }
@@ -62,6 +64,8 @@ impl ForceSolver {
     /// Orients the rods at angles `phi`, and keeps these tangents as the base that
     /// [`ForceSolver::orient_turned`] turns from.
     pub(crate) fn orient(&mut self, phi: &[f64]) {
+        self.base.resize(phi.len(), Vector2::zeros());
+        self.base_angle.resize(phi.len(), 0.0);
         for ((t, b), &angle) in self.tangent.iter_mut().zip(&mut self.base).zip(phi) {
             *t = geometry::tangent(angle);
             *b = *t;
@@ -238,6 +242,16 @@ impl ForceSolver {
         max_force2.sqrt()
     }
 
+    /// The joint forces of rods whose unit tangents are `tangent`, turning at `rate`, into
+    /// `force`, and their angular accelerations into `alpha`: the solve an observation makes,
+    /// for a method that carries its tangents.
+    pub(crate) fn solve_at(&mut self, tangent: &[Vector2<f64>], rate: &[f64], alpha: &mut [f64]) {
+        self.tangent.copy_from_slice(tangent);
+        // The base no longer stands for these tangents.
+        self.moves = None;
+        self.solve(rate, None, alpha);
+    }
+
     /// Fills an observation of rods at `angle` turning at `rate`, whose unit tangents a
     /// method carries as `tangent` (its angles' sines and cosines to round-off): the angles,
     /// rates, angular accelerations and tensions the joint forces give there. The solve and
@@ -250,31 +264,39 @@ impl ForceSolver {
         rate: &[f64],
         out: &mut Observation,
     ) {
-        self.tangent.copy_from_slice(tangent);
-        // The base no longer stands for these tangents.
-        self.moves = None;
+        out.angular_acceleration.resize(rate.len(), 0.0);
+        self.solve_at(tangent, rate, &mut out.angular_acceleration);
         out.angle.clear();
         out.angle.extend_from_slice(angle);
         out.angular_velocity.clear();
         out.angular_velocity.extend_from_slice(rate);
-        out.angular_acceleration.resize(rate.len(), 0.0);
-        self.solve(rate, None, &mut out.angular_acceleration);
-        out.tangent.clone_from(&self.tangent);
+        out.tangent.clear();
+        out.tangent.extend_from_slice(tangent);
         self.tension(&mut out.tension);
     }
 
     /// Tension on each rod: the mean pull of its two joints along it.
     pub(crate) fn tension(&self, out: &mut Vec<f64>) {
-        let n = self.force.len();
-        out.clear();
-        out.extend((0..n).map(|i| {
-            let after = if i + 1 < n {
-                self.force[i + 1]
-            } else {
-                Vector2::zeros()
-            };
-            -0.5 * self.tangent[i].dot(&(self.force[i] + after))
-        }));
+        out.resize(self.force.len(), 0.0);
+        let mut after = Vector2::zeros(); // the free end's joint pulls with nothing
+        let rods = out.iter_mut().zip(&self.tangent).zip(&self.force);
+        for ((tension, t), force) in rods.rev() {
+            *tension = -0.5 * t.dot(&(force + after));
+            after = *force;
+        }
+    }
+
+    /// The tension on rod `i` alone (see [`ForceSolver::tension`]); 0 past the last.
+    pub(crate) fn tension_of(&self, i: usize) -> f64 {
+        let (Some(t), Some(force)) = (self.tangent.get(i), self.force.get(i)) else {
+            return 0.0;
+        };
+        let after = self
+            .force
+            .get(i + 1)
+            .copied()
+            .unwrap_or_else(Vector2::zeros);
+        -0.5 * t.dot(&(force + after))
     }
 }
 

@@ -141,9 +141,9 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     discretization: "rods",
     // The state (centre, angle, tangent, velocity, rate: 64), Newton's unknowns and guesses (Δθ, μ,
     // two past μ/k², two past torques: 72), its per-rod and per-joint blocks (slope, end normal,
-    // chord, F, U, gap, y, pivot, gain: 208), A's factorisation for the projection (112) and its
-    // output (24), the observer's joint-force solve (96).
-    bytes_per_segment: 64 + 72 + 208 + 112 + 24 + 96,
+    // chord, F, U, gap, y, pivot, gain: 208), A's factorisation for the projection (112; it
+    // projects the velocities in place), the observer's joint-force solve (96).
+    bytes_per_segment: 64 + 72 + 208 + 112 + 96,
     order_in_h: 2,
     colours: ([200, 170, 240], [90, 40, 160]),
     build: |scene, segments, dt| Ok(Box::new(Midpoint::new(scene, segments, dt)?)),
@@ -321,9 +321,6 @@ pub struct Midpoint {
     observer: ForceSolver,
     /// Steps since the state's velocities were last projected.
     since_projection: u64,
-    /// The projection's output, swapped with the state's velocities.
-    projected_velocity: Vec<Vector2<f64>>,
-    projected_rate: Vec<f64>,
 }
 
 impl Midpoint {
@@ -335,21 +332,20 @@ impl Midpoint {
         let n = segments;
         let angle = scene.initial_angles(n);
         let rate = scene.initial_rates(n);
-        let velocity = geometry::centre_velocities(&angle, &rate);
+        let tangent: Vec<_> = angle
+            .iter()
+            .map(|&theta| geometry::tangent(theta))
+            .collect();
+        let velocity = geometry::centre_velocities(&tangent, &rate);
         let momentum: f64 = velocity.iter().map(|v| v.x).sum::<f64>() / n as f64;
-        let mut centres = Vec::with_capacity(n);
-        geometry::centres(&angle, &mut centres); // eqs. (14)–(15)
         let mut midpoint = Self {
             h: 1.0 / n as f64,
             k: dt,
             rotation: ROTATION * DESCRIPTOR.rotation_scale(n, dt),
             coarse: DESCRIPTOR.is_coarse(n, dt),
             steps: 0,
-            centre: centres.iter().map(|p| p.coords).collect(),
-            tangent: angle
-                .iter()
-                .map(|&theta| geometry::tangent(theta))
-                .collect(),
+            centre: geometry::centres(&tangent), // eqs. (14)–(15)
+            tangent,
             angle,
             velocity,
             rate,
@@ -384,17 +380,26 @@ impl Midpoint {
             clock: 0.0,
             gravity: Vector2::new(0.0, 1.0),
             since_projection: 0,
-            projected_velocity: vec![Vector2::zeros(); n],
-            projected_rate: vec![0.0; n],
         };
         midpoint.energy_start = midpoint.energy_in_frame().total();
-        let mut at_rest = Observation::default();
-        midpoint.observe(&mut at_rest);
+        // The joint forces at the start (Newton's own scratch takes the accelerations).
+        let observer = &mut midpoint.observer;
+        observer.gravity = midpoint.ledger.gravity(0.0);
+        observer.solve_at(
+            &midpoint.tangent,
+            &midpoint.rate,
+            &mut midpoint.residual_angle,
+        );
         midpoint.support_tension = method::support_tension_at_rest(
-            at_rest.tension.first().copied().unwrap_or(0.0),
-            at_rest.angle.first().copied().unwrap_or(0.0),
+            observer.tension_of(0),
+            midpoint.angle.first().copied().unwrap_or(0.0),
             n,
         );
+        // The first step's guess: μ/k² = f/2 of the joint forces at the start, the nearest
+        // known to its middle (for later steps, the last two steps' extrapolated).
+        for (recent, force) in midpoint.recent.iter_mut().zip(&observer.force) {
+            *recent = 0.5 * force;
+        }
         Ok(midpoint)
     }
 
@@ -402,10 +407,11 @@ impl Midpoint {
     fn energy_in_frame(&self) -> Energy {
         let (h, inertia) = (self.h, self.inertia());
         let mut e = Energy::default();
-        for i in 0..self.angle.len() {
-            e.translational += 0.5 * h * self.velocity[i].norm_squared();
-            e.rotational += 0.5 * inertia * self.rate[i] * self.rate[i];
-            e.potential -= h * self.centre[i].y;
+        let rods = self.velocity.iter().zip(&self.rate).zip(&self.centre);
+        for ((velocity, rate), centre) in rods {
+            e.translational += 0.5 * h * velocity.norm_squared();
+            e.rotational += 0.5 * inertia * rate * rate;
+            e.potential -= h * centre.y;
         }
         e
     }
@@ -714,21 +720,17 @@ impl Midpoint {
         let mut after = Vector2::zeros(); // ν_{j+1}
         let (mut before, mut projected) = (0.0, 0.0);
         let joints = self.work[..n].iter().zip(&self.projection.gain[..n]);
-        let rods =
-            (self.velocity[..n].iter().zip(&self.rate[..n])).zip(&self.projection.normal[..n]);
-        let out = self.projected_velocity[..n]
-            .iter_mut()
-            .zip(&mut self.projected_rate[..n]);
-        for (((work, gain), ((velocity, &rate), normal)), (v_out, w_out)) in
-            joints.zip(rods).zip(out).rev()
-        {
+        // Each rod's velocities are read, then overwritten by their projection, in place.
+        let rods = (self.velocity[..n].iter_mut().zip(&mut self.rate[..n]))
+            .zip(&self.projection.normal[..n]);
+        for ((work, gain), ((velocity, rate), normal)) in joints.zip(rods).rev() {
             let nu = work - gain * after;
-            let v = velocity - (after - nu) / h;
-            let w = rate - half * normal.dot(&(nu + after)) / inertia;
-            before += h * velocity.norm_squared() + inertia * rate * rate;
+            let v = *velocity - (after - nu) / h;
+            let w = *rate - half * normal.dot(&(nu + after)) / inertia;
+            before += h * velocity.norm_squared() + inertia * *rate * *rate;
             projected += h * v.norm_squared() + inertia * w * w;
-            *v_out = v;
-            *w_out = w;
+            *velocity = v;
+            *rate = w;
             after = nu;
         }
         // The kinetic energy the kept energy leaves at this configuration: what the
@@ -738,15 +740,13 @@ impl Midpoint {
         let target = self.energy_start - self.ledger.inertial_work() - potential;
         if projected > 0.0 && (target - projected).abs() <= RESCALE_LIMIT * projected {
             let scale = (target / projected).sqrt();
-            self.projected_velocity.iter_mut().for_each(|v| *v *= scale);
-            self.projected_rate.iter_mut().for_each(|w| *w *= scale);
+            self.velocity.iter_mut().for_each(|v| *v *= scale);
+            self.rate.iter_mut().for_each(|w| *w *= scale);
             self.statistics.restored_energy += before - projected;
             self.statistics.roundoff_energy += (target - before).abs();
         } else {
             self.statistics.unrestored_energy += (target - projected).abs();
         }
-        std::mem::swap(&mut self.velocity, &mut self.projected_velocity);
-        std::mem::swap(&mut self.rate, &mut self.projected_rate);
         self.since_projection = 0;
     }
 

@@ -166,19 +166,18 @@ impl Rattle {
         let angle = scene.initial_angles(n);
         let rate = scene.initial_rates(n);
         let h = 1.0 / n as f64;
-        let momentum: Vec<_> = geometry::centre_velocities(&angle, &rate)
+        let tangent: Vec<_> = angle
+            .iter()
+            .map(|&theta| geometry::tangent(theta))
+            .collect();
+        let momentum: Vec<_> = geometry::centre_velocities(&tangent, &rate)
             .into_iter()
             .map(|v| h * v)
             .collect();
         let ledger = SupportLedger::new(scene.support(), momentum.iter().map(|p| p.x).sum());
-        let mut centres = Vec::with_capacity(n);
-        geometry::centres(&angle, &mut centres); // eqs. (14)–(15)
         let now = State {
-            centre: centres.iter().map(|p| p.coords).collect(),
-            tangent: angle
-                .iter()
-                .map(|theta| Vector2::new(theta.cos(), theta.sin()))
-                .collect(),
+            centre: geometry::centres(&tangent), // eqs. (14)–(15)
+            tangent,
             spin: rate.iter().map(|w| h * h * h / 12.0 * w).collect(),
             angle,
             momentum,

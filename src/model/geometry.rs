@@ -98,16 +98,19 @@ fn walk_to(nodes: &[Point], edges: &[f64], from: usize, s: f64) -> (usize, Point
     (i, nodes[i] + frac * (nodes[i + 1] - nodes[i]))
 }
 
-/// Segment centres (eqs. 14–15): x_i = Σ_{m<i} h cos φ_m + (h/2) cos φ_i, y likewise.
-pub fn centres(angles: &[f64], out: &mut Vec<Point>) {
-    let h = 1.0 / angles.len() as f64;
-    out.clear();
-    let mut p = Point::origin();
-    for &phi in angles {
-        let t = tangent(phi);
-        out.push(p + 0.5 * h * t);
-        p += h * t;
-    }
+/// Segment centres (eqs. 14–15) of equal rods with unit tangents `tangents` (cos φ_i,
+/// sin φ_i): x_i = Σ_{m<i} h cos φ_m + (h/2) cos φ_i, y likewise; the support at the origin.
+pub fn centres(tangents: &[Vector2<f64>]) -> Vec<Vector2<f64>> {
+    let h = 1.0 / tangents.len() as f64;
+    let mut end = Vector2::zeros();
+    tangents
+        .iter()
+        .map(|t| {
+            let centre = end + 0.5 * h * t;
+            end += h * t;
+            centre
+        })
+        .collect()
 }
 
 /// The point at arc length `s` (0 at the support, 1 at the tip) along the equal segments
@@ -298,17 +301,17 @@ pub fn first_moment(angles: &[f64]) -> Vector2<f64> {
         })
 }
 
-/// The rods' centre velocities v_i = Σ_{j<i} h φ̇_j n_j + (h/2) φ̇_i n_i of equal rods at
-/// `angles` turning at `angular_velocity`: what a method in maximal coordinates starts from.
-pub fn centre_velocities(angles: &[f64], angular_velocity: &[f64]) -> Vec<Vector2<f64>> {
-    let h = 1.0 / angles.len() as f64;
+/// The rods' centre velocities v_i = Σ_{j<i} h φ̇_j n_j + (h/2) φ̇_i n_i of equal rods with
+/// unit tangents `tangents` (n_i = (−sin φ_i, cos φ_i)) turning at `angular_velocity`: what a
+/// method in maximal coordinates starts from.
+pub fn centre_velocities(tangents: &[Vector2<f64>], angular_velocity: &[f64]) -> Vec<Vector2<f64>> {
+    let h = 1.0 / tangents.len() as f64;
     let mut end = Vector2::zeros();
-    angles
+    tangents
         .iter()
         .zip(angular_velocity)
-        .map(|(&phi, &w)| {
-            let (s, c) = phi.sin_cos();
-            let turn = h * w * Vector2::new(-s, c);
+        .map(|(t, &w)| {
+            let turn = h * w * Vector2::new(-t.y, t.x);
             let centre = end + 0.5 * turn;
             end += turn;
             centre
@@ -368,24 +371,62 @@ pub fn motion_of(
     lengths: Option<&[f64]>,
     nodes: &mut Vec<Point>,
 ) -> Motion {
-    let h = length_of(lengths, angles.len());
+    let (n, rates) = (angles.len(), (angular_velocity, angular_acceleration));
+    let equal = std::iter::repeat(1.0 / n as f64);
+    // Each case its own loop, so that the pass has no branch a rod: the tangents given or
+    // worked out, rods of 1/N or of given lengths.
+    match (tangents.filter(|t| t.len() == n), lengths) {
+        (Some(t), None) => motion_along(t.iter().copied(), equal, rates, nodes),
+        (Some(t), Some(l)) => motion_along(t.iter().copied(), l.iter().copied(), rates, nodes),
+        (None, lengths) => {
+            let t = angles.iter().map(|&phi| tangent(phi));
+            motion_along(t, (0..n).map(length_of(lengths, n)), rates, nodes)
+        }
+    }
+}
+
+/// [`motion_of`]'s pass over rods of unit tangents `tangents` and lengths `lengths`, turning
+/// at the rates and accelerations `rates`.
+#[inline(always)]
+fn motion_along(
+    tangents: impl ExactSizeIterator<Item = Vector2<f64>>,
+    lengths: impl Iterator<Item = f64>,
+    (angular_velocity, angular_acceleration): (&[f64], &[f64]),
+    nodes: &mut Vec<Point>,
+) -> Motion {
+    let n = tangents.len();
+    // Every node written in place, the support's first.
     nodes.clear();
+    nodes.resize(n + 1, Point::origin());
     let mut p = Point::origin();
-    nodes.push(p);
     let (mut start, mut motion) = (0.0, Motion::default());
-    // (A rate or acceleration not given is zero: the nodes are always all drawn.)
-    let at = |values: &[f64], i: usize| values.get(i).copied().unwrap_or(0.0);
-    let tangents = tangents.filter(|t| t.len() == angles.len());
-    for (i, &phi) in angles.iter().enumerate() {
-        let (w, alpha) = (at(angular_velocity, i), at(angular_acceleration, i));
-        let t = tangents.map_or_else(|| tangent(phi), |t| t[i]);
-        let (n, l) = (Vector2::new(-t.y, t.x), h(i));
+    let mut rod = |node: &mut Point, t: Vector2<f64>, l: f64, w: f64, alpha: f64| {
+        let normal = Vector2::new(-t.y, t.x);
         p += l * t; // eqs. (14)–(15)
-        nodes.push(p);
-        motion.tip_velocity += l * w * n;
-        motion.momentum += l * w * (1.0 - (start + 0.5 * l)) * n;
-        motion.tip_acceleration += l * (alpha * n - w * w * t);
+        *node = p;
+        motion.tip_velocity += l * w * normal;
+        motion.momentum += l * w * (1.0 - (start + 0.5 * l)) * normal;
+        motion.tip_acceleration += l * (alpha * normal - w * w * t);
         start += l;
+    };
+    let rods = nodes[1..].iter_mut().zip(tangents.zip(lengths));
+    if angular_velocity.len() == n && angular_acceleration.len() == n {
+        let motions = angular_velocity.iter().zip(angular_acceleration);
+        for ((node, (t, l)), (&w, &alpha)) in rods.zip(motions) {
+            rod(node, t, l, w, alpha);
+        }
+    } else {
+        // (A rate or acceleration not given is zero: the nodes are always all drawn.)
+        let at = |values: &[f64], i: usize| values.get(i).copied().unwrap_or(0.0);
+        for (i, (node, (t, l))) in rods.enumerate() {
+            rod(
+                node,
+                t,
+                l,
+                at(angular_velocity, i),
+                at(angular_acceleration, i),
+            );
+        }
     }
     motion
 }
@@ -393,6 +434,22 @@ pub fn motion_of(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn each_centre_lies_midway_between_its_nodes_and_moves_with_the_string_s_momentum() {
+        let angles = [0.3, -0.2, 1.1, 0.7, -1.4];
+        let rates = [0.5, 2.0, -1.5, 0.25, 3.0];
+        let tangents: Vec<_> = angles.iter().map(|&a| tangent(a)).collect();
+        let mut each = Vec::new();
+        nodes(&angles, &mut each);
+        for (centre, ends) in centres(&tangents).iter().zip(each.windows(2)) {
+            assert!((centre - 0.5 * (ends[0].coords + ends[1].coords)).norm() < 1e-15);
+        }
+        let h = 1.0 / angles.len() as f64;
+        let velocities = centre_velocities(&tangents, &rates);
+        let momentum: Vector2<f64> = velocities.iter().map(|v| h * v).sum();
+        assert!((momentum - momentum_of(&angles, &rates, None)).norm() < 1e-14);
+    }
 
     #[test]
     fn the_motion_in_one_pass_is_the_four_figures_each_by_its_own() {
