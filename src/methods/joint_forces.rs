@@ -281,7 +281,7 @@ impl ForceSolver {
         let mut after = Vector2::zeros(); // the free end's joint pulls with nothing
         let rods = out.iter_mut().zip(&self.tangent).zip(&self.force);
         for ((tension, t), force) in rods.rev() {
-            *tension = -0.5 * t.dot(&(force + after));
+            *tension = rod_tension(t, force, &after);
             after = *force;
         }
     }
@@ -296,8 +296,15 @@ impl ForceSolver {
             .get(i + 1)
             .copied()
             .unwrap_or_else(Vector2::zeros);
-        -0.5 * t.dot(&(force + after))
+        rod_tension(t, force, &after)
     }
+}
+
+/// The tension of a rod with unit tangent `t` between its joints' forces `force` (at its
+/// upper end) and `after` (at its lower): the mean pull of the two along it.
+#[inline(always)]
+fn rod_tension(t: &Vector2<f64>, force: &Vector2<f64>, after: &Vector2<f64>) -> f64 {
+    -0.5 * t.dot(&(force + after))
 }
 
 #[cfg(test)]
