@@ -180,15 +180,6 @@ fn half_angle(x: f64) -> (f64, f64, f64, f64) {
     }
 }
 
-/// μ_{i+1}, the multiplier of the joint at rod i's end (zero past the free end).
-#[inline]
-fn multiplier_after(multiplier: &[Vector2<f64>], i: usize) -> Vector2<f64> {
-    multiplier
-        .get(i + 1)
-        .copied()
-        .unwrap_or_else(Vector2::zeros)
-}
-
 /// A rod's centre increment over a step of length `dt`, Δc_i = k v_i + (μ_i − μ_{i+1})/h +
 /// (k²/2) ĝ, from its joints' multipliers `(μ_i, μ_{i+1})` and `fall` = (k²/2) ĝ: what
 /// Newton's residuals and the state's update share.
@@ -274,7 +265,8 @@ pub struct Midpoint {
     tangent: Vec<Vector2<f64>>,
     velocity: Vec<Vector2<f64>>,
     rate: Vec<f64>,
-    /// Newton's unknowns: the turns Δθ_i and μ_j = k² λ_j / 2.
+    /// Newton's unknowns: the turns Δθ_i and μ_j = k² λ_j / 2, with μ_N = 0 past the free
+    /// end, so that every rod reads the joint at its end, μ_{i+1}, with no case of its own.
     turn: Vec<f64>,
     multiplier: Vec<Vector2<f64>>,
     /// μ/k² of the last two steps taken, and their lengths: the next step's guess
@@ -350,7 +342,7 @@ impl Midpoint {
             velocity,
             rate,
             turn: vec![0.0; n],
-            multiplier: vec![Vector2::zeros(); n],
+            multiplier: vec![Vector2::zeros(); n + 1],
             recent: vec![Vector2::zeros(); n],
             older: vec![Vector2::zeros(); n],
             recent_torque: vec![0.0; n],
@@ -457,6 +449,18 @@ impl Midpoint {
     /// the Jacobian is evaluated (each rod's part in a pass of its own, before the
     /// elimination) and factorised here; without, the last one serves. Leaves y_j in `work`.
     fn forward(&mut self, dt: f64, refresh: bool) {
+        if refresh {
+            self.forward_with::<true>(dt);
+        } else {
+            self.forward_with::<false>(dt);
+        }
+    }
+
+    /// [`Midpoint::forward`], compiled once with the refresh and once without: one loop
+    /// serving both tested which at every rod (`docs/measurements.md`, "The fine rope:
+    /// Newton's loops by kind, the shadow's states in batches").
+    #[inline(always)]
+    fn forward_with<const REFRESH: bool>(&mut self, dt: f64) {
         let (h, half) = (self.h, 0.5 * self.h);
         let spin_gain = 6.0 / (h * h); // (12/h³)(h/2)
         let eye = Matrix2::identity();
@@ -482,19 +486,19 @@ impl Midpoint {
             turn_chord,
             ..
         } = self;
-        let (multiplier, tangent, turn) = (&multiplier[..n], &tangent[..n], &turn[..n]);
+        let (multiplier, tangent, turn) = (&multiplier[..=n], &tangent[..n], &turn[..n]);
         let (rate, velocity, gap) = (&rate[..n], &velocity[..n], &gap[..n]);
         let (upper, gain, pivot) = (&mut upper[..n], &mut gain[..n], &mut pivot[..n]);
         let (slope, work) = (&mut slope[..n], &mut work[..n]);
         let residual_angle = &mut residual_angle[..n];
         let (end_normal, turn_chord) = (&mut end_normal[..n], &mut turn_chord[..n]);
-        if refresh {
+        if REFRESH {
             // Each rod's part of the Jacobian first, in a pass of its own: it does not depend
             // on the elimination, yet inside the elimination's loop its division 1/d_i queued
             // with the pivot's, on which the next rod waits (a seventh of a step's samples fell
             // just after the two: docs/measurements.md). The elimination keeps the pivot's.
             for j in 0..n {
-                let m = multiplier[j] + multiplier_after(multiplier, j);
+                let m = multiplier[j] + multiplier[j + 1];
                 let rod = Turn::of(tangent[j], turn[j]);
                 let inv_d = 1.0 / (1.0 + spin_gain * rod.db.dot(&m));
                 slope[j] = Slope {
@@ -512,9 +516,9 @@ impl Midpoint {
         let mut before_y = Vector2::zeros();
         let mut passed = Passed::none(); // at a refresh: U_{j−1} D'_{j−1}⁻¹ U_{j−1}
         for j in 0..n {
-            let after = multiplier_after(multiplier, j);
+            let after = multiplier[j + 1];
             let m = multiplier[j] + after;
-            let (b, chord) = if refresh {
+            let (b, chord) = if REFRESH {
                 let Slope { b, inv_d, .. } = slope[j];
                 let w = (3.0 * inv_d) * end_normal[j] * b.transpose();
                 // S_jj = 2I + W_{j−1} + W_j = 3I + U_{j−1} + W_j.
@@ -606,8 +610,7 @@ impl Midpoint {
             }
         } else {
             for i in 0..n {
-                let after = multiplier_after(&self.multiplier, i);
-                let m = self.multiplier[i] + after;
+                let m = self.multiplier[i] + self.multiplier[i + 1];
                 let free = dt * self.rate[i];
                 self.turn[i] = free - spin_gain * Turn::lean(self.tangent[i], free).0.dot(&m);
             }
@@ -651,12 +654,12 @@ impl Midpoint {
             *torque = per_step * (dt * rate - turn);
         }
         let (h, fall) = (self.h, 0.5 * dt * dt * self.gravity);
-        let mu = &self.multiplier[..n];
+        let mu = &self.multiplier[..=n];
         let rods = (self.centre.iter_mut().zip(&mut self.velocity))
             .zip(self.angle.iter_mut().zip(&mut self.tangent))
             .zip(self.rate.iter_mut().zip(&self.turn));
         for (i, (((centre, velocity), (angle, tangent)), (rate, &turn))) in rods.enumerate() {
-            let joints = (mu[i], multiplier_after(mu, i));
+            let joints = (mu[i], mu[i + 1]);
             let increment = centre_increment(dt, *velocity, joints, h, fall);
             moved += increment.x;
             let chord = Turn::lean(*tangent, turn).1;
