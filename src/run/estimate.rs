@@ -230,6 +230,10 @@ impl Shadow {
 mod tests {
     use super::*;
 
+    /// A step at which the shadow of the report's scheme at N = 20 (twice this step) blows
+    /// up, some hundreds of its steps in.
+    const DIVERGING_DT: f64 = 0.01;
+
     #[test]
     fn a_run_too_coarse_to_halve_has_no_shadow() {
         let scene = Scene::Release { angle_deg: 30.0 };
@@ -256,6 +260,43 @@ mod tests {
         let e = shadow.estimate(0, &nodes, None).unwrap();
         assert!(e.tip < 1e-15 && e.shape < 1e-15);
         assert!(shadow.estimate(1, &nodes, None).is_none());
+    }
+
+    #[test]
+    fn a_shadow_that_diverges_ahead_stops_where_one_stepped_here_does() {
+        // The report's scheme past its stability limit blows up some batches in: the thread
+        // ahead ends its batch at the divergence, and the run reads it at the same shared
+        // step as a shadow stepped on the run's thread, for the same reason, every estimate
+        // before it the same.
+        let scene = Scene::Release { angle_deg: 30.0 };
+        let make = || {
+            Shadow::new(
+                MethodKind::Seed,
+                &scene,
+                40,
+                DIVERGING_DT,
+                TipBound::FirstOrder,
+            )
+            .unwrap()
+            .unwrap()
+        };
+        let (mut here, mut ahead) = (make(), make().ahead());
+        let mut nodes = Vec::new();
+        geometry::nodes(&scene.initial_angles(40), &mut nodes);
+        let tip = *nodes.last().unwrap();
+        let lost_at = (0..100_000)
+            .step_by(STRIDE as usize)
+            .find(|&step| {
+                let (a, b) = (here.tip_estimate(step, tip), ahead.tip_estimate(step, tip));
+                assert_eq!(a, b, "step {step}");
+                a.is_none()
+            })
+            .expect("the shadow diverged");
+        let (a, b) = (here.lost().unwrap(), ahead.lost().unwrap());
+        assert_eq!((a.step, &a.reason), (b.step, &b.reason));
+        // Past the first batches, not at the start.
+        assert!(lost_at > 4 * 8 * STRIDE, "lost at step {lost_at}");
+        assert!(a.reason.contains("grew without bound"), "{}", a.reason);
     }
 
     #[test]

@@ -1,6 +1,6 @@
 //! Where the live estimate's shadow gets its states: stepped on the run's own thread, just
 //! when the run reaches each instant the two share ([`ShadowSteps::here`]), or ahead of it on
-//! a core of its own, each state sent over a bounded channel as it is made
+//! a core of its own, its states sent over a bounded channel in batches of [`BATCH`]
 //! ([`ShadowSteps::ahead`]). The shadow never reads the run, so both give the same states,
 //! bit for bit; only where the CPU is spent differs. A state sent ahead carries the shadow's
 //! angles, not its nodes: the run draws nodes only at its frames, so a sine and cosine of
@@ -19,9 +19,20 @@ use std::sync::atomic::{AtomicU64, Ordering};
 /// How often, in time units, the shadow's energy is checked for a blow-up.
 const ENERGY_CHECK_EVERY: f64 = 1e-3;
 
-/// How many states the thread ahead may have made that the run has not read: it waits
-/// there (a few steps' CPU is all it can spend past the run's end).
-const AHEAD: usize = 8;
+/// States the thread ahead sends at once. Sent one by one, each state read from a full
+/// channel woke the waiting thread: at N = 1 000 the wake-ups of its 1 620 states took a
+/// tenth to a fifth of the run's CPU (`docs/measurements.md`, "The fine rope: Newton's loops
+/// by kind, the shadow's states in batches").
+const BATCH: usize = 8;
+
+/// How many batches the thread ahead may have made that the run has not begun to read: it
+/// waits there. Past the run's end it can have spent at most the rest of the batch being
+/// read, this one and the one it was making: 23 steps of the shadow.
+const AHEAD: usize = 1;
+
+/// What the thread ahead sends at once: up to [`BATCH`] states in order, ending early at a
+/// divergence.
+type Batch = Vec<Result<State, Diverged>>;
 
 /// The shadow's method and its blow-up watch.
 pub(super) struct Stepper {
@@ -108,7 +119,9 @@ pub(super) struct State {
 pub(super) enum ShadowSteps {
     Here(Box<Stepper>),
     Ahead {
-        states: Receiver<Result<State, Diverged>>,
+        batches: Receiver<Batch>,
+        /// The states of the batch being read, in order.
+        unread: std::vec::IntoIter<Result<State, Diverged>>,
         /// Angle buffers the run has read, sent back to be filled again.
         spare: Sender<Vec<f64>>,
         /// The last state read.
@@ -135,7 +148,7 @@ impl ShadowSteps {
         let Self::Here(mut stepper) = self else {
             return self;
         };
-        let (send, states) = crossbeam_channel::bounded(AHEAD);
+        let (send, batches) = crossbeam_channel::bounded::<Batch>(AHEAD);
         let (spare, recycled) = crossbeam_channel::unbounded::<Vec<f64>>();
         let cpu_nanos = Arc::new(AtomicU64::new(0));
         let counted = Arc::clone(&cpu_nanos);
@@ -148,20 +161,26 @@ impl ShadowSteps {
             .spawn(move || {
                 let cpu = cpu_time::ThreadTime::now();
                 loop {
-                    let made = stepper
-                        .step()
-                        .map(|()| stepper.state(recycled.try_recv().unwrap_or_default()));
-                    let lost = made.is_err();
+                    let mut batch = Batch::with_capacity(BATCH);
+                    let mut lost = false;
+                    while batch.len() < BATCH && !lost {
+                        let made = stepper
+                            .step()
+                            .map(|()| stepper.state(recycled.try_recv().unwrap_or_default()));
+                        lost = made.is_err();
+                        batch.push(made);
+                    }
                     let nanos = u64::try_from(cpu.elapsed().as_nanos()).unwrap_or(u64::MAX);
                     counted.store(nanos, Ordering::Relaxed);
-                    if send.send(made).is_err() || lost {
+                    if send.send(batch).is_err() || lost {
                         return;
                     }
                 }
             });
         match spawned {
             Ok(_) => Self::Ahead {
-                states,
+                batches,
+                unread: Batch::new().into_iter(),
                 spare,
                 now: first,
                 lengths,
@@ -169,14 +188,15 @@ impl ShadowSteps {
             },
             // (The closure, and the shadow in it, are gone with the failed spawn.)
             Err(err) => {
-                let (send, states) = crossbeam_channel::bounded(1);
-                let _ = send.send(Err(Diverged {
+                let (send, batches) = crossbeam_channel::bounded(1);
+                let _ = send.send(vec![Err(Diverged {
                     step: 0,
                     time: 0.0,
                     reason: format!("the shadow's thread could not start: {err}"),
-                }));
+                })]);
                 Self::Ahead {
-                    states,
+                    batches,
+                    unread: Batch::new().into_iter(),
                     spare,
                     now: first,
                     lengths,
@@ -196,16 +216,27 @@ impl ShadowSteps {
                 Ok(())
             }
             Self::Ahead {
-                states, spare, now, ..
+                batches,
+                unread,
+                spare,
+                now,
+                ..
             } => {
                 while now.steps < target {
-                    let next = states.recv().unwrap_or_else(|_| {
-                        Err(Diverged {
-                            step: now.steps + 1,
-                            time: f64::NAN,
-                            reason: "the shadow's thread stopped".to_owned(),
-                        })
-                    })?;
+                    let Some(next) = unread.next() else {
+                        *unread = batches
+                            .recv()
+                            .unwrap_or_else(|_| {
+                                vec![Err(Diverged {
+                                    step: now.steps + 1,
+                                    time: f64::NAN,
+                                    reason: "the shadow's thread stopped".to_owned(),
+                                })]
+                            })
+                            .into_iter();
+                        continue;
+                    };
+                    let next = next?;
                     let read = std::mem::replace(now, next);
                     let _ = spare.send(read.angles);
                 }
