@@ -89,10 +89,10 @@ pub const ROTATION: f64 = 0.05;
 /// Jacobian; the kept Jacobian contracts less where one rod's turn was guessed badly (by
 /// factors of 0.03 to 0.05 from 30° at N = 1 000, where a bend passes), so a step stopped at
 /// its second solve may leave 0.03 to 0.05 of that solve's correction, a few 1e-10 at most,
-/// not 1e-11. Stopping at 3e-11 or 1e-10
-/// would save 6 or 10 % of the solves but move the horizontal release's free fall from t²/2
-/// by 7.3e-12 or 1.2e-11 where it is 5.7e-12 (docs/measurements.md, "The fine rope:
-/// Newton's loops by kind, the shadow's states in batches").
+/// not 1e-11. Stopping at 3e-11 or 1e-10 would save 6 or 10 % of the solves but move the
+/// horizontal release's free fall from t²/2 by 7.3e-12 or 1.2e-11 where it is 5.7e-12
+/// (docs/measurements.md, "The fine rope: Newton's loops by kind, the shadow's states in
+/// batches").
 const CORRECTION: f64 = 1e-11;
 /// Newton refreshes its Jacobian until its correction falls below this; after, it keeps it
 /// (simplified Newton). A step's first correction is mostly 1e-5 to 1e-4 (from 30° at

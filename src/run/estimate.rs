@@ -229,6 +229,20 @@ impl Shadow {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::run::shadow_steps::BATCH;
+
+    /// Two shadows of a run of `method` at N = 40 and step `dt` in `scene`, one stepped on the
+    /// run's thread and one ahead on its own, and the run's tip at the start.
+    fn here_and_ahead(method: MethodKind, scene: &Scene, dt: f64) -> (Shadow, Shadow, Point) {
+        let make = || {
+            Shadow::new(method, scene, 40, dt, TipBound::FirstOrder)
+                .unwrap()
+                .unwrap()
+        };
+        let mut nodes = Vec::new();
+        geometry::nodes(&scene.initial_angles(40), &mut nodes);
+        (make(), make().ahead(), *nodes.last().unwrap())
+    }
 
     /// A step at which the shadow of the report's scheme at N = 20 (twice this step) blows
     /// up, some hundreds of its steps in.
@@ -269,21 +283,7 @@ mod tests {
         // step as a shadow stepped on the run's thread, for the same reason, every estimate
         // before it the same.
         let scene = Scene::Release { angle_deg: 30.0 };
-        let make = || {
-            Shadow::new(
-                MethodKind::Seed,
-                &scene,
-                40,
-                DIVERGING_DT,
-                TipBound::FirstOrder,
-            )
-            .unwrap()
-            .unwrap()
-        };
-        let (mut here, mut ahead) = (make(), make().ahead());
-        let mut nodes = Vec::new();
-        geometry::nodes(&scene.initial_angles(40), &mut nodes);
-        let tip = *nodes.last().unwrap();
+        let (mut here, mut ahead, tip) = here_and_ahead(MethodKind::Seed, &scene, DIVERGING_DT);
         let lost_at = (0..100_000)
             .step_by(STRIDE as usize)
             .find(|&step| {
@@ -295,7 +295,10 @@ mod tests {
         let (a, b) = (here.lost().unwrap(), ahead.lost().unwrap());
         assert_eq!((a.step, &a.reason), (b.step, &b.reason));
         // Past the first batches, not at the start.
-        assert!(lost_at > 4 * 8 * STRIDE, "lost at step {lost_at}");
+        assert!(
+            lost_at > 4 * BATCH as u64 * STRIDE,
+            "lost at step {lost_at}"
+        );
         assert!(a.reason.contains("grew without bound"), "{}", a.reason);
     }
 
@@ -327,15 +330,9 @@ mod tests {
             (MethodKind::Chain, shaken, 2e-3, 1e-3),
         ];
         for (method, scene, dt, swung) in cases {
-            let make = || {
-                Shadow::new(method, &scene, 40, dt, TipBound::FirstOrder)
-                    .unwrap()
-                    .unwrap()
-            };
-            let (mut here, mut ahead) = (make(), make().ahead());
+            let (mut here, mut ahead, tip) = here_and_ahead(method, &scene, dt);
             let mut nodes = Vec::new();
             geometry::nodes(&scene.initial_angles(40), &mut nodes);
-            let tip = *nodes.last().unwrap();
             for step in (0..1_500).step_by(STRIDE as usize) {
                 let (a, b) = (here.tip_estimate(step, tip), ahead.tip_estimate(step, tip));
                 assert_eq!(a, b, "{method}, step {step}");

@@ -23,7 +23,7 @@ const ENERGY_CHECK_EVERY: f64 = 1e-3;
 /// channel woke the waiting thread: at N = 1 000 the wake-ups of its 1 620 states took a
 /// tenth to a fifth of the run's CPU (`docs/measurements.md`, "The fine rope: Newton's loops
 /// by kind, the shadow's states in batches").
-const BATCH: usize = 8;
+pub(super) const BATCH: usize = 8;
 
 /// How many batches the thread ahead may have made that the run has not begun to read: it
 /// waits there. Past the run's end it can have spent at most the rest of the batch being
