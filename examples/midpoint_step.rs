@@ -18,43 +18,19 @@
 //! Prints a Markdown table with the CPU seconds of each run at the default step and at the
 //! rule's before (its thread's; the cells run on every core at once).
 
+#[path = "common/tips.rs"]
+mod tips;
+
 use rayon::prelude::*;
+use rope::methods::MethodKind;
 use rope::methods::method::round_down_nicely;
-use rope::methods::{Method, MethodKind};
 use rope::model::Scene;
-use rope::model::geometry::Point;
-use rope::model::support::tip_in_the_room;
+use tips::{cells, largest, tips};
 
 const DURATION: f64 = 3.0;
 
 /// How many times finer the step of the run that stands for the time-converged one is.
 const FINER: u64 = 4;
-
-/// The tip at every `every`-th step to [`DURATION`], and the run's CPU seconds.
-fn tips(scene: &Scene, n: usize, dt: f64, every: u64) -> (Vec<Point>, f64) {
-    let cpu = cpu_time::ThreadTime::now();
-    let mut method = MethodKind::Midpoint
-        .build(scene, n, dt)
-        .expect("midpoint starts from every release");
-    let total = (DURATION / dt).round() as u64;
-    let tip = |m: &dyn Method| tip_in_the_room(m.support(), m.angles(), m.lengths());
-    let mut out = vec![tip(method.as_ref())];
-    while method.steps() < total {
-        method.step().expect("midpoint does not diverge");
-        if method.steps().is_multiple_of(every) {
-            out.push(tip(method.as_ref()));
-        }
-    }
-    (out, cpu.elapsed().as_secs_f64())
-}
-
-/// The largest distance between two runs' tips, sampled at the same instants.
-fn largest(a: &[Point], b: &[Point]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(p, q)| (p - q).norm())
-        .fold(0.0, f64::max)
-}
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -76,21 +52,17 @@ fn main() {
         Some(k) => limited(n).max(k),
         None => d.default_dt(n),
     };
-    let cells: Vec<(f64, usize)> = [0.0, 30.0, 80.0]
-        .iter()
-        .flat_map(|&a| segments.iter().map(move |&n| (a, n)))
-        .collect();
-    let rows: Vec<String> = cells
+    let rows: Vec<String> = cells(&[0.0, 30.0, 80.0], &segments)
         .par_iter()
         .map(|&(angle, n)| {
             let scene = Scene::Release { angle_deg: angle };
             let k = rule(n);
             let fine_k = k / FINER as f64;
-            let (run, cpu) = tips(&scene, n, k, 1);
-            let (fine, _) = tips(&scene, n, fine_k, FINER);
-            let (finer_rope, _) = tips(&scene, 2 * n, fine_k, FINER);
-            let (old, old_cpu) = tips(&scene, n, before(n), 1);
-            let (old_fine, _) = tips(&scene, n, before(n) / FINER as f64, FINER);
+            let (run, cpu) = tips(&scene, n, k, 1, DURATION);
+            let (fine, _) = tips(&scene, n, fine_k, FINER, DURATION);
+            let (finer_rope, _) = tips(&scene, 2 * n, fine_k, FINER, DURATION);
+            let (old, old_cpu) = tips(&scene, n, before(n), 1, DURATION);
+            let (old_fine, _) = tips(&scene, n, before(n) / FINER as f64, FINER, DURATION);
             let time_error = largest(&run, &fine);
             let spatial = largest(&fine, &finer_rope);
             let old_error = largest(&old, &old_fine);

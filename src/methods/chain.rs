@@ -129,7 +129,7 @@ impl Chain {
             descriptor: &DESCRIPTOR,
             k: dt,
             refinement: DESCRIPTOR.refinement(n, dt),
-            rotation_scale: DESCRIPTOR.rotation_scale(n, dt),
+            rotation_scale: DESCRIPTOR.rotation_scale(scene, n, dt),
             steps: 0,
             phi,
             omega,
@@ -163,7 +163,7 @@ impl Chain {
         let mut chain = Self::new(scene, segments, dt)?;
         chain.descriptor = descriptor;
         chain.refinement = descriptor.refinement(segments, dt);
-        chain.rotation_scale = descriptor.rotation_scale(segments, dt);
+        chain.rotation_scale = descriptor.rotation_scale(scene, segments, dt);
         let n = segments as f64;
         let edge = |i: usize| 1.0 - (1.0 - i as f64 / n).powf(exponent);
         let length: Vec<f64> = (0..segments).map(|i| edge(i + 1) - edge(i)).collect();

@@ -2,6 +2,7 @@
 //! fills for output, and the [`Descriptor`] in which each method says everything else about
 //! itself once. Also the checks and messages every method shares.
 
+use super::accurate_step::{AccurateStep, TOLERANCE_STEP_GRID, whole_division};
 use crate::error::{ConfigError, Diverged};
 use crate::model::{Energy, Scene, SupportNow};
 use nalgebra::Vector2;
@@ -17,10 +18,6 @@ pub const TENSION_MAX: f64 = 1.5;
 /// fifth of one for an RK4 substep of the chain (a turn's local error θ⁵/120, 3e-6 rad).
 /// `rattle` keeps its bound: loosened, its runs at k = 0.1 grew dearer, not cheaper.
 pub const LOOSEST_ROTATION: f64 = 10.0;
-
-/// What [`Descriptor::tolerance_dt`] divides into whole steps: half the interval of the default
-/// 60 frames per time unit, so that each frame falls on an even step.
-pub const TOLERANCE_STEP_GRID: f64 = 1.0 / 120.0;
 
 /// The state of the string at one instant, for output: everything per segment.
 #[derive(Clone, Debug, Default)]
@@ -146,14 +143,6 @@ pub fn round_down_nicely(x: f64) -> f64 {
         1.0
     };
     nice * decade
-}
-
-/// The largest step at most `dt` that divides `interval` into a whole number of steps (one
-/// step of `interval` where `dt` is longer): what puts frames, or a shadow's shared steps,
-/// exactly on steps.
-pub fn whole_division(interval: f64, dt: f64) -> f64 {
-    let steps = (interval / dt - 1e-9).ceil().max(1.0);
-    interval / steps
 }
 
 /// The tension at the support of a string at rest, from its first rod's tension `first`
@@ -315,41 +304,6 @@ pub struct Descriptor {
     pub plannable: fn(&Scene, f64) -> bool,
 }
 
-/// The step a method's tip needs at N segments, at most `largest`:
-/// k = `times_h` × h × (`from` / N)^`shrink`. Its time error grows as k² times a constant that
-/// itself grows with N (a finer rope resolves a faster whip), against a spatial error that
-/// falls as h, so past `from` the step falls faster than h. Below `largest` it is brought down
-/// to 1/(120 m) for a whole m ([`TOLERANCE_STEP_GRID`]), as `--tolerance`'s steps are: frames
-/// at 60, 30, 20, … per time unit then fall on even steps, which the live estimate's shadow
-/// shares.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct AccurateStep {
-    pub times_h: f64,
-    pub from: usize,
-    pub shrink: f64,
-    pub largest: f64,
-}
-
-impl AccurateStep {
-    /// The step at `segments` segments.
-    pub fn at(&self, segments: usize) -> f64 {
-        let n = segments.max(1) as f64;
-        let wanted = self.times_h / n * (self.from as f64 / n).powf(self.shrink);
-        match wanted >= self.largest {
-            true => self.largest,
-            false => whole_division(TOLERANCE_STEP_GRID, wanted),
-        }
-    }
-
-    /// The rule in a run's words: "0.8 h (1600 / N)^0.4 at most 1e-3".
-    pub fn rule(&self) -> String {
-        format!(
-            "{} h ({} / N)^{} at most {:e}",
-            self.times_h, self.from, self.shrink, self.largest
-        )
-    }
-}
-
 /// When a method blew up at one N, over the steps of the blow-up map.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BlowUp {
@@ -378,14 +332,27 @@ impl Descriptor {
         self.courant / (segments as f64 * TENSION_MAX.sqrt())
     }
 
-    /// The default time step at `segments` segments.
+    /// The default time step at `segments` segments for the horizontal release, whose free
+    /// end whips hardest, or any scene not known to be milder: what studies, plans and
+    /// `--tolerance`'s steps start from.
     pub fn default_dt(&self, segments: usize) -> f64 {
+        self.default_with(segments, self.accurate_step.map(|a| a.at(segments)))
+    }
+
+    /// The default time step at `segments` segments in `scene`: [`Descriptor::default_dt`],
+    /// or where the method's accurate step eases for the scene ([`AccurateStep::ease`]), the
+    /// eased step. What a run takes when `--dt` is not given.
+    pub fn default_step(&self, scene: &Scene, segments: usize) -> f64 {
+        self.default_with(
+            segments,
+            self.accurate_step.map(|a| a.in_scene(scene, segments)),
+        )
+    }
+
+    fn default_with(&self, segments: usize, accurate: Option<f64>) -> f64 {
         let limited =
             round_down_nicely(self.default_step_fraction * self.stability_limit(segments));
-        match self.accurate_step {
-            Some(a) => limited.max(a.at(segments)),
-            None => limited,
-        }
+        accurate.map_or(limited, |a| limited.max(a))
     }
 
     /// The step `--tolerance` runs at `segments` segments:
@@ -409,26 +376,35 @@ impl Descriptor {
         (dt / self.default_dt(segments)).min(1.0)
     }
 
-    /// What a method's bound on a rod's rotation per (sub)step is multiplied by: the
-    /// [`refinement`](Self::refinement) up to twice the step `--tolerance` runs at, and past
-    /// it k / (2 k_tolerance), at most [`LOOSEST_ROTATION`]. A step asked for that coarse is
+    /// What a method's bound on a rod's rotation per (sub)step is multiplied by in `scene`:
+    /// the [`refinement`](Self::refinement) up to [`coarse_above`](Self::coarse_above), and
+    /// past it k over that, at most [`LOOSEST_ROTATION`]. A step asked for that coarse is
     /// then taken as asked where the rods turn slowly (from 30° at N = 12 and k = 0.1, a pair
     /// of 0.05 for each step, where the fixed bound split each into four or six), and still
     /// split where the free end whips. What keeps an explicit method stable, its Courant
-    /// bound, stays as tuned. Below twice the tolerance step nothing changes, so no run that
-    /// `--tolerance` plans or pilots, nor any default run, nor the live estimate's shadow of
-    /// one (N/2 rods at 2k, and k_tolerance never grows with N), is touched.
-    pub fn rotation_scale(&self, segments: usize, dt: f64) -> f64 {
-        let loosening = dt / (2.0 * self.tolerance_dt(segments));
+    /// bound, stays as tuned. Below that nothing changes, so no run that `--tolerance` plans
+    /// or pilots, nor any default run, nor the live estimate's shadow of one (N/2 rods at 2k,
+    /// and neither k_tolerance nor the default step grows with N), is touched.
+    pub fn rotation_scale(&self, scene: &Scene, segments: usize, dt: f64) -> f64 {
+        let loosening = dt / self.coarse_above(scene, segments);
         self.refinement(segments, dt) * loosening.clamp(1.0, LOOSEST_ROTATION)
     }
 
-    /// Whether a step `dt` at `segments` is coarse: past twice the step `--tolerance` runs at,
-    /// where [`rotation_scale`](Self::rotation_scale) loosens a method's bounds. No run that
-    /// `--tolerance` plans or pilots, no default run and no live estimate's shadow of one has
-    /// a coarse step.
-    pub fn is_coarse(&self, segments: usize, dt: f64) -> bool {
-        dt > 2.0 * self.tolerance_dt(segments)
+    /// Whether a step `dt` at `segments` in `scene` is coarse: past
+    /// [`coarse_above`](Self::coarse_above), where [`rotation_scale`](Self::rotation_scale)
+    /// loosens a method's bounds. No run that `--tolerance` plans or pilots, no default run
+    /// and no live estimate's shadow of one has a coarse step.
+    pub fn is_coarse(&self, scene: &Scene, segments: usize, dt: f64) -> bool {
+        dt > self.coarse_above(scene, segments)
+    }
+
+    /// Twice the larger of the step `--tolerance` runs at and the scene's default step
+    /// ([`default_step`](Self::default_step), above the tolerance step only where a calm
+    /// release eases it): the step past which a step is coarse.
+    pub fn coarse_above(&self, scene: &Scene, segments: usize) -> f64 {
+        2.0 * self
+            .tolerance_dt(segments)
+            .max(self.default_step(scene, segments))
     }
 
     /// The Courant number C = k N sqrt(F_max) that a step `dt` at `segments` amounts to.
@@ -480,37 +456,84 @@ mod tests {
     #[test]
     fn a_rotation_bound_loosens_only_past_twice_the_tolerance_step_so_no_planned_run_or_shadow_moves()
      {
+        let scenes = [
+            Scene::Release { angle_deg: 0.0 },
+            Scene::Release { angle_deg: 4.0 },
+            Scene::Release { angle_deg: 30.0 },
+            Scene::Fold { gap: 0.1 },
+        ];
         for method in MethodKind::ALL {
             let d = method.descriptor();
-            let mut before = f64::INFINITY;
-            for n in d.min_segments.max(4)..=2_000 {
-                let (k, default) = (d.tolerance_dt(n), d.default_dt(n));
-                // k_tolerance never grows with N, so a shadow (N/2 rods, 2k) stays below
-                // twice its own tolerance step whenever its run is at or below the run's.
-                assert!(k <= before, "{method} N = {n}: {k} above {before}");
-                before = k;
-                for dt in [default, k, 2.0 * k] {
-                    assert_eq!(d.rotation_scale(n, dt), d.refinement(n, dt), "{method} {n}");
-                    assert!(!d.is_coarse(n, dt), "{method} N = {n} at k = {dt}");
-                    let half = n / 2;
-                    if half >= d.min_segments && dt <= k {
-                        let shadow = 2.0 * dt;
-                        assert_eq!(
-                            d.rotation_scale(half, shadow),
-                            d.refinement(half, shadow),
-                            "{method} N = {n}'s shadow at k = {dt}"
-                        );
-                        assert!(!d.is_coarse(half, shadow), "{method} N = {n}'s shadow");
+            for scene in &scenes {
+                let (mut before, mut default_before) = (f64::INFINITY, f64::INFINITY);
+                for n in d.min_segments.max(4)..=2_000 {
+                    let (k, default) = (d.tolerance_dt(n), d.default_step(scene, n));
+                    // Neither k_tolerance nor the default step grows with N, so a shadow
+                    // (N/2 rods, 2k) stays below its own coarse step whenever its run does.
+                    assert!(k <= before, "{method} N = {n}: {k} above {before}");
+                    assert!(default <= default_before, "{method} {scene:?} N = {n}");
+                    (before, default_before) = (k, default);
+                    let top = k.max(default);
+                    for dt in [default, k, 2.0 * top] {
+                        let scale = d.rotation_scale(scene, n, dt);
+                        assert_eq!(scale, d.refinement(n, dt), "{method} {n}");
+                        assert!(!d.is_coarse(scene, n, dt), "{method} N = {n} at k = {dt}");
+                        let half = n / 2;
+                        if half >= d.min_segments && dt <= top {
+                            let shadow = 2.0 * dt;
+                            assert_eq!(
+                                d.rotation_scale(scene, half, shadow),
+                                d.refinement(half, shadow),
+                                "{method} N = {n}'s shadow at k = {dt}"
+                            );
+                            assert!(!d.is_coarse(scene, half, shadow), "{method} {n}'s shadow");
+                        }
                     }
+                    // Past it, in proportion to the step, and at most tenfold; such a step is
+                    // coarse (the midpoint rule then takes it whole where the rods allow).
+                    let coarse = 2.0 * top * (1.0 + 1e-12);
+                    assert!(d.is_coarse(scene, n, coarse), "{method} N = {n}");
+                    let thrice = d.rotation_scale(scene, n, 6.0 * top) / d.refinement(n, 6.0 * top);
+                    assert!((thrice - 3.0).abs() < 1e-12, "{method} N = {n}: {thrice}");
+                    assert_eq!(d.rotation_scale(scene, n, 1e3 * top), LOOSEST_ROTATION);
                 }
-                // Past it, in proportion to the step, and at most tenfold; such a step is
-                // coarse (the midpoint rule then takes it whole where the rods allow).
-                assert!(d.is_coarse(n, 2.0 * k * (1.0 + 1e-12)), "{method} N = {n}");
-                let thrice = d.rotation_scale(n, 6.0 * k) / d.refinement(n, 6.0 * k);
-                assert!((thrice - 3.0).abs() < 1e-12, "{method} N = {n}: {thrice}");
-                assert_eq!(d.rotation_scale(n, 1e3 * k), LOOSEST_ROTATION);
             }
         }
+    }
+
+    #[test]
+    fn a_calm_release_takes_a_longer_default_step_than_the_horizontal_and_other_scenes_do_not() {
+        let midpoint = MethodKind::Midpoint.descriptor();
+        let release = |angle_deg| Scene::Release { angle_deg };
+        // The horizontal release keeps the rule: 1/1080 at N = 1 000.
+        let horizontal = midpoint.default_step(&release(0.0), 1_000);
+        assert_eq!(horizontal, midpoint.default_dt(1_000));
+        assert!((horizontal - 1.0 / 1_080.0).abs() < 1e-15);
+        // From 10° on, twice the rule's step brought onto the grid: 1/600 at N = 1 000, and
+        // twice the largest, 2e-3, at N = 400.
+        for angle in [10.0, 30.0, 90.0] {
+            let k = midpoint.default_step(&release(angle), 1_000);
+            assert!((k - 1.0 / 600.0).abs() < 1e-15, "{angle}°: {k}");
+            assert_eq!(midpoint.default_step(&release(angle), 400), 2e-3);
+        }
+        // Between, linear in the angle: 5° is 1.5 times the rule before the grid.
+        let half = midpoint.default_step(&release(5.0), 1_000);
+        assert!((half - 1.0 / 720.0).abs() < 1e-15, "{half}");
+        // Other scenes and methods with no accurate step keep the default.
+        for scene in [
+            Scene::Fold { gap: 0.1 },
+            Scene::Mode {
+                number: 1,
+                amplitude: 0.05,
+            },
+        ] {
+            assert_eq!(midpoint.default_step(&scene, 1_000), horizontal);
+        }
+        let rattle = MethodKind::Rattle.descriptor();
+        assert_eq!(
+            rattle.default_step(&release(30.0), 1_000),
+            rattle.default_dt(1_000)
+        );
     }
 
     #[test]

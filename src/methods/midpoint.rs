@@ -119,7 +119,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     min_segments: 2,
     courant: COURANT,
     limit_meaning: "steps shrink past about k = C h / sqrt(F_max)",
-    past_limit: "its own steps shrink until the fastest rod turns at most 0.05 rad in one (up to 0.5 rad for a --dt over twice the step --tolerance takes), so it stays stable at any --dt: the limit only sets the default step, up to N = 100",
+    past_limit: "its own steps shrink until the fastest rod turns at most 0.05 rad in one (up to 0.5 rad for a --dt over twice the step --tolerance takes), so it stays stable at any --dt: the limit only sets the default step at small N (up to N = 100 from the horizontal)",
     keeps_energy: true,
     steady_cost: true,
     blow_up: &[],
@@ -131,12 +131,20 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     // step holds that error near a fixed share of the spatial error (the distance to 2N)
     // from N = 800 up, and the 1e-3 cap below. From 0°, 30° and 80° to t = 3, at every step:
     // `cargo run --release --example midpoint_step`, docs/measurements.md. Its own steps still
-    // shrink where a rod turns fast.
-    accurate_step: Some(crate::methods::method::AccurateStep {
+    // shrink where a rod turns fast. That is the horizontal release's step, whose free end
+    // whips hardest; from 10° below the horizontal on, twice it (1/600 at N = 1 000, 2e-3 up
+    // to N = 800), and 1 to 2 times between: the time error there stays at most 0.40 of the
+    // spatial error (1° at N = 1 000 and 1 600), where the rule's holds 0.62 from 0°, in
+    // up to half the steps. From 0° to 80° at N = 100 to 3 200:
+    // `cargo run --release --example release_step`, docs/measurements.md.
+    accurate_step: Some(crate::methods::accurate_step::AccurateStep {
         times_h: 0.8,
         from: 1600,
         shrink: 0.4,
         largest: 1e-3,
+        whip_to_deg: 0.0,
+        calm_from_deg: 10.0,
+        calm_times: 2.0,
     }),
     refuses_unstable_step: false,
     // The limit: the worst tip error to t = 3 within 1.5 % of the default step's in every
@@ -342,8 +350,8 @@ impl Midpoint {
         let mut midpoint = Self {
             h: 1.0 / n as f64,
             k: dt,
-            rotation: ROTATION * DESCRIPTOR.rotation_scale(n, dt),
-            coarse: DESCRIPTOR.is_coarse(n, dt),
+            rotation: ROTATION * DESCRIPTOR.rotation_scale(scene, n, dt),
+            coarse: DESCRIPTOR.is_coarse(scene, n, dt),
             steps: 0,
             centre: geometry::centres(&tangent), // eqs. (14)–(15)
             tangent,

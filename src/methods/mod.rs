@@ -2,6 +2,8 @@
 //! no I/O), and describes itself once, in its [`Descriptor`].
 //!
 //! * [`method`]: what every method is: the [`Method`] trait and its [`Descriptor`];
+//! * [`accurate_step`]: the step a method stable at any step needs for its tip, by N and by
+//!   how hard the scene whips, on the grid of frame instants;
 //! * [`seed`]: the report's finite-difference scheme, first order in h;
 //! * [`chain`]: a chain of rigid rods with RK4, second order in h;
 //! * [`graded`]: the chain's method on rods graded towards the free end, which resolve the whip;
@@ -18,6 +20,7 @@
 //! import what they use from the file that defines it, never through this one, so that no
 //! two of them import each other.
 
+pub mod accurate_step;
 pub mod chain;
 pub(crate) mod constraint_matrix;
 pub mod graded;
@@ -29,8 +32,9 @@ pub mod registry;
 pub mod seed;
 pub mod tridiagonal;
 
+pub use accurate_step::whole_division;
 pub use method::{
     BlowUp, Descriptor, Method, Observation, StepStatistics, TENSION_MAX, round_down_nicely,
-    stability_hint, whole_division,
+    stability_hint,
 };
 pub use registry::{MethodKind, REPORT, ReportSetting};

@@ -280,7 +280,7 @@ pub fn announce(asked: &Asked, plans: &[Planned]) -> Vec<Notice> {
             let why = match method.accurate_step {
                 Some(a) if plan.dt > method.default_step_fraction * limit => format!(
                     "what its tip needs, {}, above {} of its estimated stability limit {limit:.3e}: {}",
-                    a.rule(),
+                    a.rule_in(&plan.scene),
                     method.default_step_fraction,
                     method.past_limit
                 ),
