@@ -98,8 +98,9 @@ pub fn run<S: FrameSink>(
 
 /// Segments from which a run of one method steps its shadow ahead on a core of its own,
 /// where the machine has two or more: `rope run --method midpoint --segments 1000
-/// --duration 3` (the served default) then takes 0.67 to 0.94 s of wall where it took 0.83
-/// to 1.20, for about 4 % more CPU (the channel, the thread); at N = 3 000, 2.83 to 3.02 s
+/// --duration 3` (the served default, measured at k = 1/1080, its step before a calm
+/// release's was doubled) then took 0.67 to 0.94 s of wall where it took 0.83 to 1.20, for
+/// about 4 % more CPU (the channel, the thread); at N = 3 000, 2.83 to 3.02 s
 /// where it took 3.31 to 3.48, for 8 % more (`docs/measurements.md`, "The fine rope: Newton's
 /// loops by kind, the shadow's states in batches"). A coarser run's shadow costs too little
 /// for it to pay.
