@@ -96,10 +96,11 @@ impl AccurateStep {
         if ease == 1.0 {
             return self.rule();
         }
+        // As a run prints it: 1.3, not 1.2999999999999998.
+        let shown = (ease * 100.0).round() / 100.0;
         let (times, from) = match ease < self.calm_times {
-            // As a run prints it: 1.3, not 1.2999999999999998.
             true => (
-                format!("{} times", (ease * 100.0).round() / 100.0),
+                format!("{shown} times"),
                 format!(
                     "the factor rises from 1 at {}° to {} at {}°, as",
                     self.whip_to_deg, self.calm_times, self.calm_from_deg
@@ -114,9 +115,36 @@ impl AccurateStep {
             ),
         };
         format!(
-            "{} × ({}) ({times} the horizontal release's rule: {from} its free end whips less)",
-            (ease * 100.0).round() / 100.0,
+            "{shown} × ({}) ({times} the horizontal release's rule: {from} its free end whips less)",
             self.rule()
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_run_reads_the_rule_as_its_scene_takes_it() {
+        // The midpoint rule's: 0.8 h (1600 / N)^0.4 at most 1e-3, twice from 10°.
+        let rule = crate::methods::midpoint::DESCRIPTOR.accurate_step;
+        let rule = rule.expect("the midpoint rule has an accurate step");
+        let release = |angle_deg| Scene::Release { angle_deg };
+        assert_eq!(rule.rule_in(&release(0.0)), rule.rule());
+        assert_eq!(rule.rule_in(&Scene::Fold { gap: 0.1 }), rule.rule());
+        let calm = rule.rule_in(&release(30.0));
+        assert!(
+            calm.starts_with("2 × (0.8 h (1600 / N)^0.4 at most 1e-3) (twice"),
+            "{calm}"
+        );
+        let between = rule.rule_in(&release(3.0));
+        assert!(
+            between.starts_with("1.3 × (") && between.contains("1.3 times"),
+            "{between}"
+        );
+        // And the steps it names: 1.3 times the rule's at 3°, on the grid below the cap.
+        let (k, k3) = (rule.at(1_000), rule.in_scene(&release(3.0), 1_000));
+        assert!((k - 1.0 / 1_080.0).abs() < 1e-15 && (k3 - 1.0 / 840.0).abs() < 1e-15);
     }
 }
