@@ -165,7 +165,7 @@ fn a_calm_releases_longer_default_step_keeps_its_time_error_well_below_the_rods_
     // a quarter of the step) must stay a small share of the rods' own error (N against 2N),
     // at every step to t = 3, through the whip.
     let n = 400;
-    let k = MIDPOINT.descriptor().default_step(&THIRTY, n);
+    let k = MIDPOINT.default_step(&THIRTY, n);
     assert_eq!(k, 2.0 * MIDPOINT.default_dt(n));
     let tips = |segments: usize, dt: f64| {
         let (outcome, frames) = run_frames(MIDPOINT, THIRTY, segments, dt, 3.0, 1.0 / k);

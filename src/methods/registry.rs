@@ -153,6 +153,12 @@ impl MethodKind {
         self.descriptor().default_dt(segments)
     }
 
+    /// The default time step in `scene` at `segments` segments: what a run takes when `--dt`
+    /// is not given ([`Descriptor::default_step`]).
+    pub fn default_step(self, scene: &Scene, segments: usize) -> f64 {
+        self.descriptor().default_step(scene, segments)
+    }
+
     /// The step `--tolerance` runs this method at with `segments` segments.
     pub fn tolerance_dt(self, segments: usize) -> f64 {
         self.descriptor().tolerance_dt(segments)

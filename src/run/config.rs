@@ -185,9 +185,8 @@ impl RunConfig {
     /// The time step asked for: `dt`, or the method's default at N in the scene (before a run
     /// side by side brings it onto the shared grid).
     pub fn step(&self) -> f64 {
-        self.dt.unwrap_or_else(|| {
-            (self.method.descriptor()).default_step(&self.scene, self.segments.max(1))
-        })
+        self.dt
+            .unwrap_or_else(|| self.method.default_step(&self.scene, self.segments.max(1)))
     }
 
     /// Refuses a run whose memory exceeds the limit, or a finite one longer than a day
